@@ -1,0 +1,110 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SCALED_JACOBIAN_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SCALED_JACOBIAN_H
+
+// The Verdict scaled Jacobian of a hexahedron (Stimpson et al., "The Verdict
+// geometric quality library", SAND2007-1751), on plain doubles.
+//
+// At each corner i the three edges leaving it, taken in the order given by
+// `hex_corner_edges` (so that an ideal cube gives +1), form a frame; the
+// corner's value is det[e1 e2 e3] / (|e1| |e2| |e3|). The centre sample uses
+// the three principal axes (differences of opposite face sums). The element's
+// value is the minimum over the 8 corners and the centre: the published
+// inverted counts of the benchmark meshes are only reproduced with the centre.
+//
+// Choice where Verdict is unhelpful: Verdict returns +DBL_MAX when an edge of
+// a frame has zero length, which would rank a collapsed element as perfect.
+// Here such a frame counts as 0 (degenerate: not inverted, but not valid
+// either), so a collapsed element is never hidden behind a good MSJ.
+
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+/// For corner i: {i, a, b, c}, the three neighbours of i whose edges, in this
+/// order, form a right-handed frame in an ideal hex (MEDIT/VTK order).
+constexpr int hex_corner_edges[8][3] = {
+  {1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
+  {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}
+};
+
+/// The 12 edges of a hexahedron as local vertex pairs.
+constexpr int hex_edges[12][2] = {
+  {0, 1}, {1, 2}, {2, 3}, {3, 0},
+  {4, 5}, {5, 6}, {6, 7}, {7, 4},
+  {0, 4}, {1, 5}, {2, 6}, {3, 7}
+};
+
+/// The 6 faces, each oriented so that its normal (right-hand rule) points out
+/// of a positively oriented hexahedron.
+constexpr int hex_faces[6][4] = {
+  {0, 3, 2, 1}, {4, 5, 6, 7},
+  {0, 1, 5, 4}, {1, 2, 6, 5},
+  {2, 3, 7, 6}, {3, 0, 4, 7}
+};
+
+/// det[a b c] / (|a||b||c|), or 0 when one vector vanishes
+inline double normalized_triple_product(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  const double la = squared_norm(a), lb = squared_norm(b), lc = squared_norm(c);
+  const double lengths = std::sqrt(la * lb * lc);
+  if(!(lengths > std::numeric_limits<double>::min()))
+    return 0.;
+  return dot(a, cross(b, c)) / lengths;
+}
+
+/// scaled Jacobian at corner `i` (0..7)
+inline double corner_scaled_jacobian(const std::array<Vec3, 8>& p, int i)
+{
+  const int* n = hex_corner_edges[i];
+  return normalized_triple_product(p[n[0]] - p[i], p[n[1]] - p[i], p[n[2]] - p[i]);
+}
+
+/// scaled Jacobian at the element centre (principal axes)
+inline double centre_scaled_jacobian(const std::array<Vec3, 8>& p)
+{
+  const Vec3 x1 = (p[1] + p[2]) + (p[5] + p[6]) - ((p[0] + p[3]) + (p[4] + p[7]));
+  const Vec3 x2 = (p[2] + p[3]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[4] + p[5]));
+  const Vec3 x3 = (p[4] + p[5]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[2] + p[3]));
+  return normalized_triple_product(x1, x2, x3);
+}
+
+/// minimum over the 8 corners only
+inline double corner_scaled_jacobian(const std::array<Vec3, 8>& p)
+{
+  double m = corner_scaled_jacobian(p, 0);
+  for(int i = 1; i < 8; ++i)
+    m = (std::min)(m, corner_scaled_jacobian(p, i));
+  return m;
+}
+
+/// the Verdict value: minimum over the 8 corners and the centre
+inline double scaled_jacobian(const std::array<Vec3, 8>& p)
+{
+  return (std::min)(corner_scaled_jacobian(p), centre_scaled_jacobian(p));
+}
+
+inline double scaled_jacobian(const Hex_mesh_arrays& m, std::size_t h)
+{
+  return scaled_jacobian(m.corners(h));
+}
+
+/// An element counts as inverted when its scaled Jacobian is negative;
+/// untangling aims at every element strictly positive.
+inline bool is_inverted(double sj) { return sj < 0.; }
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SCALED_JACOBIAN_H
