@@ -74,6 +74,15 @@ typename GeomTraits::Point_3 to_point(const Vec3& v, const GeomTraits& gt)
   return gt.construct_point_3_object()(FT(v[0]), FT(v[1]), FT(v[2]));
 }
 
+/// How the algorithms read a mesh data structure into flat arrays and write
+/// the positions back. Specialised for `Indexed_hex_mesh` below and for
+/// `Linear_cell_complex_for_combinatorial_map` in `Linear_cell_complex_hex_mesh.h`.
+/// A specialisation provides `Point`, `extract(mesh, gt)` and
+/// `write_back(arrays, mesh, gt)`; vertex i of the arrays must be the same
+/// vertex in both.
+template <class HexMesh>
+struct Hex_mesh_adapter;
+
 template <class Point, class GeomTraits>
 Hex_mesh_arrays make_hex_mesh_arrays(const Indexed_hex_mesh<Point>& mesh, const GeomTraits& gt)
 {
@@ -92,6 +101,24 @@ void write_back_points(const Hex_mesh_arrays& a, Indexed_hex_mesh<Point>& mesh, 
   for(std::size_t i = 0; i < a.points.size(); ++i)
     mesh.points[i] = to_point(a.points[i], gt);
 }
+
+template <class Point_3>
+struct Hex_mesh_adapter<Indexed_hex_mesh<Point_3> >
+{
+  typedef Point_3 Point;
+
+  template <class GeomTraits>
+  static Hex_mesh_arrays extract(const Indexed_hex_mesh<Point_3>& mesh, const GeomTraits& gt)
+  {
+    return make_hex_mesh_arrays(mesh, gt);
+  }
+
+  template <class GeomTraits>
+  static void write_back(const Hex_mesh_arrays& a, Indexed_hex_mesh<Point_3>& mesh, const GeomTraits& gt)
+  {
+    write_back_points(a, mesh, gt);
+  }
+};
 
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
