@@ -1,0 +1,154 @@
+# Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Runs the built hexmesh-optimize on good and bad command lines and files.
+#   cmake -DTOOL=<hexmesh-optimize> -DEXAMPLE_DATA=<examples data dir>
+#         -DSHARED_DATA=<shared data dir> -DWORK=<scratch dir> -P this_file
+# Every failed check is printed; the script fails at the end if any did.
+
+cmake_minimum_required(VERSION 3.19) # string(JSON)
+
+# check(<message> <condition>...): the condition as for if()
+set(failures 0)
+function(check message)
+  if(${ARGN})
+  else()
+    message(SEND_ERROR "check failed: ${message}")
+    math(EXPR n "${failures} + 1")
+    set(failures ${n} PARENT_SCOPE)
+  endif()
+endfunction()
+
+# run(<result prefix> args...): sets <prefix>_rc, <prefix>_out, <prefix>_err
+function(run prefix)
+  execute_process(COMMAND ${TOOL} ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  WORKING_DIRECTORY ${WORK})
+  set(${prefix}_rc "${rc}" PARENT_SCOPE)
+  set(${prefix}_out "${out}" PARENT_SCOPE)
+  set(${prefix}_err "${err}" PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(bunny ${EXAMPLE_DATA}/bunny_dualsheet.vtk)
+
+# ------------------------------------------------------------- command line
+run(help --help)
+check("--help exits 0 (got ${help_rc})" help_rc EQUAL 0)
+check("--help prints the usage" help_out MATCHES "usage: hexmesh-optimize INPUT")
+check("--help lists --report" help_out MATCHES "--report FILE.json")
+
+run(none)
+check("no argument exits 2 (got ${none_rc})" none_rc EQUAL 2)
+check("no argument says why: ${none_err}" none_err MATCHES "hexmesh-optimize: error: no input mesh")
+
+run(unknown ${bunny} --frobnicate)
+check("unknown option exits 2 (got ${unknown_rc})" unknown_rc EQUAL 2)
+check("unknown option message: ${unknown_err}" unknown_err MATCHES "^hexmesh-optimize: error: unknown option '--frobnicate'\n")
+check("unknown option prints the usage" unknown_err MATCHES "usage:")
+
+run(novalue ${bunny} --report)
+check("option without its value exits 2 (got ${novalue_rc})" novalue_rc EQUAL 2)
+
+run(badext ${bunny} ${WORK}/out.txt)
+check("an unknown output format exits 2 (got ${badext_rc})" badext_rc EQUAL 2)
+check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk or .vtu")
+check("nothing written" NOT EXISTS ${WORK}/out.txt)
+
+run(three a.mesh b.mesh c.mesh)
+check("three files exit 2 (got ${three_rc})" three_rc EQUAL 2)
+
+# ------------------------------------------------------------------ bad input
+run(missing ${WORK}/no_such_mesh.mesh ${WORK}/missing_out.vtk)
+check("a missing file fails" NOT missing_rc EQUAL 0)
+check("a missing file is not a usage error" NOT missing_rc EQUAL 2)
+check("one error line naming the file: ${missing_err}" missing_err MATCHES "^hexmesh-optimize: error: [^\n]*no_such_mesh.mesh[^\n]*\n$")
+check("no output after a read failure" NOT EXISTS ${WORK}/missing_out.vtk)
+
+file(WRITE ${WORK}/broken.mesh "MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 0\n1 0 0 0\nHexahedra\n1\n1 2 3 4 5 6 7 8 0\nEnd\n")
+run(broken ${WORK}/broken.mesh ${WORK}/broken_out.vtk --report ${WORK}/broken.json)
+check("an index out of range fails" NOT broken_rc EQUAL 0)
+check("one line file:line: message: ${broken_err}" broken_err MATCHES "^hexmesh-optimize: error: [^\n]*broken.mesh:[0-9]+: [^\n]*\n$")
+check("no output after a read failure" NOT EXISTS ${WORK}/broken_out.vtk)
+check("no report after a read failure" NOT EXISTS ${WORK}/broken.json)
+
+run(unwritable ${bunny} ${WORK}/no/such/dir/out.vtk)
+check("an unwritable output fails" NOT unwritable_rc EQUAL 0)
+check("the write error names the file: ${unwritable_err}" unwritable_err MATCHES "^hexmesh-optimize: error: [^\n]*out.vtk")
+
+# ------------------------------------------------------------------ good input
+run(good ${bunny} ${WORK}/out.vtk --report ${WORK}/report.json --histogram-svg=${WORK}/histogram.svg)
+check("the bundled bunny runs (rc ${good_rc}: ${good_err})" good_rc EQUAL 0)
+check("before report" good_out MATCHES "before: [^\n]*bunny_dualsheet.vtk")
+check("2832 hexes reported" good_out MATCHES "hexes +2832\n")
+check("45 inverted reported" good_out MATCHES "inverted +45\n")
+check("MSJ reported" good_out MATCHES "MSJ +-0.77")
+check("after report" good_out MATCHES "after: [^\n]*out.vtk")
+check("histogram bars" good_out MATCHES "#")
+check("output written" EXISTS ${WORK}/out.vtk)
+check("SVG written" EXISTS ${WORK}/histogram.svg)
+
+if(EXISTS ${WORK}/out.vtk)
+  file(READ ${WORK}/out.vtk vtk)
+  check("the output carries the scaled Jacobian cell field" vtk MATCHES "scaled_jacobian")
+  run(reread ${WORK}/out.vtk)
+  check("the output reads back" reread_rc EQUAL 0)
+  check("same quality after the round trip" reread_out MATCHES "inverted +45\n")
+endif()
+
+if(EXISTS ${WORK}/histogram.svg)
+  file(READ ${WORK}/histogram.svg svg)
+  check("SVG document" svg MATCHES "^<svg ")
+  check("complete SVG document" svg MATCHES "</svg>\n$")
+  check("SVG axis label" svg MATCHES "scaled Jacobian")
+  check("SVG legend for the output" svg MATCHES "after \\(out.vtk\\)")
+endif()
+
+if(EXISTS ${WORK}/report.json)
+  file(READ ${WORK}/report.json json)
+  string(JSON file ERROR_VARIABLE e GET "${json}" input file)
+  check("JSON parses and has input.file: ${e}" NOT e)
+  check("input.file" file MATCHES "bunny_dualsheet.vtk$")
+  foreach(key hexes vertices inverted msj asj)
+    string(JSON v_${key} ERROR_VARIABLE e GET "${json}" input ${key})
+    check("input.${key}: ${e}" NOT e)
+  endforeach()
+  check("input.hexes = ${v_hexes}" v_hexes EQUAL 2832)
+  check("input.vertices = ${v_vertices}" v_vertices EQUAL 3724)
+  check("input.inverted = ${v_inverted}" v_inverted EQUAL 45)
+  check("input.msj = ${v_msj}" v_msj LESS -0.77 AND v_msj GREATER -0.772)
+  string(JSON n ERROR_VARIABLE e LENGTH "${json}" input histogram counts)
+  check("20 histogram bins (${n}, ${e})" n EQUAL 20)
+  set(sum 0)
+  if(n EQUAL 20)
+    foreach(k RANGE 19)
+      string(JSON c GET "${json}" input histogram counts ${k})
+      math(EXPR sum "${sum} + ${c}")
+    endforeach()
+  endif()
+  check("the histogram counts every hex (${sum})" sum EQUAL 2832)
+  foreach(key file hexes vertices inverted msj asj histogram seconds surface_error)
+    string(JSON t ERROR_VARIABLE e TYPE "${json}" output ${key})
+    check("output.${key}: ${e}" NOT e)
+  endforeach()
+endif()
+
+# report only, to a .mesh output
+run(medit ${bunny} ${WORK}/out.mesh --quiet --report ${WORK}/report2.json)
+check("writing MEDIT (${medit_err})" medit_rc EQUAL 0)
+check("--quiet prints nothing: ${medit_out}" NOT medit_out MATCHES ".")
+check("MEDIT output written" EXISTS ${WORK}/out.mesh)
+
+# ---------------------------------------------------------- shared meshes
+if(EXISTS ${SHARED_DATA}/inverted/hex_torus.vtk)
+  run(torus ${SHARED_DATA}/inverted/hex_torus.vtk)
+  check("hex_torus reads (${torus_err})" torus_rc EQUAL 0)
+  check("hex_torus's cell type 10 gives a warning: ${torus_err}" torus_err MATCHES "^warning: ")
+  check("hex_torus: 121 inverted" torus_out MATCHES "inverted +121\n")
+endif()
+
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} check(s) failed")
+endif()
+message(STATUS "hexmesh-optimize command line: all checks passed")

@@ -1,0 +1,215 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Command line of hexmesh-optimize: the options struct and a table-driven
+// parser. To add an option: add a field to `Hexmesh_optimize_options` and one
+// entry to `option_table()` (name, value name or nullptr for a flag, help
+// text, and what to do with the value; `parse_number()` checks numbers).
+
+#ifndef HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
+#define HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hexmesh_optimize {
+
+struct Hexmesh_optimize_options
+{
+  std::string input;         ///< the mesh to read (required)
+  std::string output;        ///< where to write the result; empty: report only
+  std::string report_json;   ///< --report FILE.json
+  std::string histogram_svg; ///< --histogram-svg FILE.svg
+  bool quiet = false;        ///< --quiet: no report on standard output
+  // Optimisation settings go here (with their entries in option_table()).
+};
+
+/// One command-line option. `value_name` is nullptr for a flag; `apply`
+/// stores the value (empty for a flag) and returns false with a message
+/// when the value is not acceptable.
+struct Option_spec
+{
+  const char* name;
+  const char* value_name;
+  const char* help;
+  std::function<bool(Hexmesh_optimize_options&, const std::string& value, std::string& error)> apply;
+};
+
+/// Parses a finite number in [min, max] for option `name`.
+inline bool parse_number(const std::string& name, const std::string& text, double min, double max,
+                         double& value, std::string& error)
+{
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if(text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(v))
+  {
+    error = "option " + name + ": '" + text + "' is not a number";
+    return false;
+  }
+  if(v < min || v > max)
+  {
+    std::ostringstream s;
+    s << "option " << name << ": " << text << " is outside [" << min << ", " << max << "]";
+    error = s.str();
+    return false;
+  }
+  value = v;
+  return true;
+}
+
+inline const std::vector<Option_spec>& option_table()
+{
+  typedef Hexmesh_optimize_options O;
+  static const std::vector<Option_spec> table = {
+    {"--report", "FILE.json",
+     "write the quality before (and after, with OUTPUT) as a JSON object",
+     [](O& o, const std::string& v, std::string&) { o.report_json = v; return true; }},
+    {"--histogram-svg", "FILE.svg",
+     "draw the scaled Jacobian histogram before (and after, with OUTPUT) as SVG",
+     [](O& o, const std::string& v, std::string&) { o.histogram_svg = v; return true; }},
+    {"--quiet", nullptr,
+     "print only warnings and errors",
+     [](O& o, const std::string&, std::string&) { o.quiet = true; return true; }},
+  };
+  return table;
+}
+
+inline std::string usage()
+{
+  std::ostringstream s;
+  s << "usage: hexmesh-optimize INPUT [OUTPUT] [options]\n"
+       "\n"
+       "Reads a hexahedral mesh (MEDIT .mesh, VTK legacy .vtk, VTK XML .vtu), prints\n"
+       "its quality (hexahedra, vertices, inverted elements, minimum and average\n"
+       "Verdict scaled Jacobian, histogram) and, when OUTPUT is given, writes the\n"
+       "optimised mesh there with the quality after (.vtk/.vtu outputs carry the\n"
+       "per-cell scaled Jacobian as the cell field \"scaled_jacobian\").\n"
+       "\n"
+       "options:\n";
+  for(const Option_spec& o : option_table())
+  {
+    std::string left = std::string("  ") + o.name + (o.value_name ? std::string(" ") + o.value_name : "");
+    if(left.size() < 28)
+      left.resize(28, ' ');
+    else
+      left += "\n" + std::string(28, ' ');
+    s << left << o.help << "\n";
+  }
+  s << "  -h, --help                  print this help and exit\n"
+       "\n"
+       "exit status: 0 success, 1 the mesh could not be read, processed or written,\n"
+       "2 bad command line\n";
+  return s.str();
+}
+
+/// whether `path` ends in .mesh, .vtk or .vtu (any case): the formats the
+/// writer knows
+inline bool has_mesh_extension(const std::string& path)
+{
+  const std::size_t dot = path.find_last_of('.');
+  if(dot == std::string::npos || path.find('/', dot) != std::string::npos)
+    return false;
+  std::string ext = path.substr(dot + 1);
+  for(char& c : ext)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == "mesh" || ext == "vtk" || ext == "vtu";
+}
+
+enum class Parse_result { run, help, error };
+
+/// Fills `options` from the command line. Options may come before or after
+/// the files, as `--name VALUE` or `--name=VALUE`; `--` ends the options.
+inline Parse_result parse_options(int argc, const char* const* argv, Hexmesh_optimize_options& options,
+                                  std::string& error)
+{
+  std::vector<std::string> files;
+  bool options_done = false;
+  for(int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if(options_done || arg.size() < 2 || arg[0] != '-')
+    {
+      files.push_back(arg);
+      continue;
+    }
+    if(arg == "--")
+    {
+      options_done = true;
+      continue;
+    }
+    if(arg == "-h" || arg == "--help")
+      return Parse_result::help;
+
+    const std::size_t eq = arg.find('=');
+    const std::string name = arg.substr(0, eq);
+    const Option_spec* spec = nullptr;
+    for(const Option_spec& o : option_table())
+      if(name == o.name)
+        spec = &o;
+    if(spec == nullptr)
+    {
+      error = "unknown option '" + name + "'";
+      return Parse_result::error;
+    }
+    std::string value;
+    if(spec->value_name != nullptr)
+    {
+      if(eq != std::string::npos)
+        value = arg.substr(eq + 1);
+      else if(i + 1 < argc)
+        value = argv[++i];
+      else
+      {
+        error = "option " + name + " needs a value (" + spec->value_name + ")";
+        return Parse_result::error;
+      }
+      if(value.empty())
+      {
+        error = "option " + name + " needs a non-empty value (" + spec->value_name + ")";
+        return Parse_result::error;
+      }
+    }
+    else if(eq != std::string::npos)
+    {
+      error = "option " + name + " takes no value";
+      return Parse_result::error;
+    }
+    if(!spec->apply(options, value, error))
+      return Parse_result::error;
+  }
+
+  if(files.empty())
+  {
+    error = "no input mesh given";
+    return Parse_result::error;
+  }
+  if(files.size() > 2)
+  {
+    error = "too many file arguments (expected INPUT [OUTPUT]): '" + files[2] + "'";
+    return Parse_result::error;
+  }
+  options.input = files[0];
+  if(files.size() == 2)
+  {
+    options.output = files[1];
+    // checked now rather than after a long optimisation
+    if(!has_mesh_extension(options.output))
+    {
+      error = "output '" + options.output + "' must end in .mesh, .vtk or .vtu";
+      return Parse_result::error;
+    }
+  }
+  return Parse_result::run;
+}
+
+} // namespace hexmesh_optimize
+
+#endif // HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
