@@ -1,0 +1,444 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Scaled Jacobian on analytic cases, mesh quality statistics on a generated
+// grid, the linear cell complex conversion (sewing by index, round trip,
+// adapter), and the published figures of the shared benchmark meshes.
+
+#include "test_util.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+#include <CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/lcc_hex_mesh_io.h>
+#include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
+#include <CGAL/hex_mesh_quality.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Indexed_hex_mesh<Point> Mesh;
+typedef CGAL::Linear_cell_complex_traits<3, K> LCC_traits;
+typedef CGAL::Linear_cell_complex_for_combinatorial_map<3, 3, LCC_traits> LCC;
+typedef std::array<Point, 8> Hex_points;
+
+namespace {
+
+Hex_points box(double a, double b, double c)
+{
+  return {Point(0, 0, 0), Point(a, 0, 0), Point(a, b, 0), Point(0, b, 0),
+          Point(0, 0, c), Point(a, 0, c), Point(a, b, c), Point(0, b, c)};
+}
+
+template <class F>
+Hex_points transformed(const Hex_points& h, F f)
+{
+  Hex_points r;
+  for(int i = 0; i < 8; ++i)
+    r[i] = f(h[i]);
+  return r;
+}
+
+void test_scaled_jacobian()
+{
+  const double tol = 1e-12;
+  const Hex_points cube = box(1, 1, 1);
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(cube), 1., tol);
+  HMO_CHECK_CLOSE(CGAL::hex_corner_scaled_jacobian(cube), 1., tol);
+
+  // an affinely scaled box, rotated and translated: still 1
+  const double ca = std::cos(0.7), sa = std::sin(0.7);
+  const Hex_points moved = transformed(box(2, 3, 5), [&](const Point& p) {
+    return Point(ca * p.x() - sa * p.y() + 10, sa * p.x() + ca * p.y() - 4, p.z() + 1);
+  });
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(moved), 1., tol);
+  HMO_CHECK_CLOSE(CGAL::hex_corner_scaled_jacobian(moved), 1., tol);
+
+  // shear x += s z: every corner frame and the principal axes are
+  // (1,0,0), (0,1,0), (s,0,1) up to signs: 1 / sqrt(1 + s^2)
+  for(double s : {0.5, 1., 3.})
+  {
+    const Hex_points sheared = transformed(cube, [s](const Point& p) {
+      return Point(p.x() + s * p.z(), p.y(), p.z());
+    });
+    HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(sheared), 1. / std::sqrt(1. + s * s), tol);
+    HMO_CHECK_CLOSE(CGAL::hex_corner_scaled_jacobian(sheared), 1. / std::sqrt(1. + s * s), tol);
+  }
+
+  // vertex 0 mirrored through the centre, to (1,1,1): the frame at corner 0 is
+  // (0,-1,-1), (-1,0,-1), (-1,-1,0): det -2, lengths sqrt(2)^3, so -1/sqrt(2);
+  // corners 1, 3, 4 become flat (0); the centre gives 16 / 11^1.5 > 0
+  Hex_points mirrored = cube;
+  mirrored[0] = Point(1, 1, 1);
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(mirrored), -1. / std::sqrt(2.), tol);
+  HMO_CHECK_CLOSE(CGAL::hex_corner_scaled_jacobian(mirrored), -1. / std::sqrt(2.), tol);
+  HMO_CHECK(CGAL::hex_scaled_jacobian(mirrored) < 0);
+
+  // the whole element inside out (top and bottom swapped): -1
+  const Hex_points inside_out = {cube[4], cube[5], cube[6], cube[7], cube[0], cube[1], cube[2], cube[3]};
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(inside_out), -1., tol);
+
+  // a collapsed edge (vertex 1 on vertex 0): 0, not inverted, not good
+  Hex_points collapsed = cube;
+  collapsed[1] = collapsed[0];
+  HMO_CHECK(CGAL::hex_scaled_jacobian(collapsed) == 0.);
+  HMO_CHECK(CGAL::hex_corner_scaled_jacobian(collapsed) == 0.);
+}
+
+/// nx x ny x nz unit cubes, vertex (i,j,k) has index i + (nx+1) (j + (ny+1) k)
+Mesh grid(int nx, int ny, int nz)
+{
+  Mesh m;
+  for(int k = 0; k <= nz; ++k)
+    for(int j = 0; j <= ny; ++j)
+      for(int i = 0; i <= nx; ++i)
+        m.points.push_back(Point(i, j, k));
+  auto v = [&](int i, int j, int k) { return std::size_t(i + (nx + 1) * (j + (ny + 1) * k)); };
+  for(int k = 0; k < nz; ++k)
+    for(int j = 0; j < ny; ++j)
+      for(int i = 0; i < nx; ++i)
+        m.hexahedra.push_back({v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k), v(i, j + 1, k),
+                               v(i, j, k + 1), v(i + 1, j, k + 1), v(i + 1, j + 1, k + 1), v(i, j + 1, k + 1)});
+  return m;
+}
+
+/// the 3x2x2 grid with grid corner (0,0,0) (in hex 0 only) mirrored through
+/// the centre of hex 0: it lands on the interior vertex (1,1,1)
+Mesh tangled_grid()
+{
+  Mesh m = grid(3, 2, 2);
+  m.points[0] = Point(1, 1, 1);
+  return m;
+}
+
+void test_quality_statistics()
+{
+  const Mesh m = tangled_grid();
+  const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(m);
+  HMO_CHECK(sj.size() == 12);
+  HMO_CHECK_CLOSE(sj[0], -1. / std::sqrt(2.), 1e-12);
+  for(std::size_t h = 1; h < sj.size(); ++h)
+    HMO_CHECK_CLOSE(sj[h], 1., 1e-12);
+
+  const CGAL::Hex_mesh_quality q = CGAL::hex_mesh_quality(m);
+  HMO_CHECK(q.hexes == 12);
+  HMO_CHECK(q.vertices == 36);
+  HMO_CHECK(q.inverted == 1);
+  HMO_CHECK_CLOSE(q.msj, -1. / std::sqrt(2.), 1e-12);
+  HMO_CHECK_CLOSE(q.asj, (11. - 1. / std::sqrt(2.)) / 12., 1e-12);
+  HMO_CHECK(int(q.histogram.size()) == CGAL::Hex_mesh_quality::histogram_bins);
+  std::size_t total = 0;
+  for(std::size_t c : q.histogram)
+    total += c;
+  HMO_CHECK(total == 12);
+  // -0.707 falls in [-0.8, -0.7) (bin 2), 1 in the last bin
+  HMO_CHECK(q.histogram[2] == 1);
+  HMO_CHECK(q.histogram[CGAL::Hex_mesh_quality::histogram_bins - 1] == 11);
+  HMO_CHECK_CLOSE(CGAL::Hex_mesh_quality::bin_lower(2), -0.8, 1e-12);
+  HMO_CHECK_CLOSE(CGAL::Hex_mesh_quality::bin_upper(2), -0.7, 1e-12);
+
+  const CGAL::Hex_mesh_quality empty = CGAL::hex_mesh_quality(Mesh());
+  HMO_CHECK(empty.hexes == 0 && empty.inverted == 0);
+}
+
+std::size_t number_of_volumes(const LCC& lcc)
+{
+  return lcc.one_dart_per_cell<3>().size();
+}
+
+/// every dart: 3-sewn iff its face (sorted vertex set) is shared by two
+/// hexes of `m`, and then its beta3 runs the other way along the same edge
+void check_sewing(const LCC& lcc, const Mesh& m)
+{
+  std::map<std::array<std::size_t, 4>, int> face_count;
+  for(const auto& h : m.hexahedra)
+    for(const auto& f : CGAL::Hexahedral_mesh_optimization::internal::lcc_hex_faces)
+    {
+      std::array<std::size_t, 4> key = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      std::sort(key.begin(), key.end());
+      ++face_count[key];
+    }
+  std::map<LCC::Vertex_attribute_const_handle, std::size_t> index;
+  std::size_t i = 0;
+  for(auto it = lcc.vertex_attributes().begin(); it != lcc.vertex_attributes().end(); ++it)
+    index[it] = i++;
+
+  std::size_t sewn = 0, free3 = 0, wrong = 0;
+  for(auto d = lcc.darts().begin(); d != lcc.darts().end(); ++d)
+  {
+    std::array<std::size_t, 4> key;
+    LCC::Dart_const_handle x = d;
+    for(int k = 0; k < 4; ++k, x = lcc.beta(x, 1))
+      key[k] = index[lcc.vertex_attribute(x)];
+    std::sort(key.begin(), key.end());
+    const bool interior = face_count[key] == 2;
+    if(lcc.is_free<3>(d))
+    {
+      ++free3;
+      if(interior)
+        ++wrong;
+    }
+    else
+    {
+      ++sewn;
+      LCC::Dart_const_handle e = lcc.beta(d, 3);
+      if(!interior || lcc.vertex_attribute(e) != lcc.vertex_attribute(lcc.beta(d, 1)) ||
+         lcc.vertex_attribute(lcc.beta(e, 1)) != lcc.vertex_attribute(d))
+        ++wrong;
+    }
+  }
+  std::size_t interior_faces = 0, boundary_faces = 0;
+  for(const auto& fc : face_count)
+    (fc.second == 2 ? interior_faces : boundary_faces) += 1;
+  HMO_CHECK(wrong == 0);
+  HMO_CHECK(sewn == 8 * interior_faces);
+  HMO_CHECK(free3 == 4 * boundary_faces);
+}
+
+void test_linear_cell_complex()
+{
+  const Mesh m = tangled_grid();
+  LCC lcc;
+  std::string message;
+  HMO_CHECK(CGAL::build_linear_cell_complex(m, lcc, &message));
+  HMO_CHECK(message.empty());
+  HMO_CHECK(lcc.is_valid());
+  HMO_CHECK(number_of_volumes(lcc) == 12);
+  HMO_CHECK(lcc.vertex_attributes().size() == 36);
+  HMO_CHECK(lcc.number_of_darts() == 12 * 24);
+  // 3x2x2 grid: 20 interior faces (40 face records) and 32 boundary faces;
+  // vertex 0 sits on vertex (1,1,1) but is still sewn by index
+  check_sewing(lcc, m);
+
+  // the geometry of each 3-cell is the MEDIT hex: same scaled Jacobian,
+  // same statistics
+  const std::vector<double> sj_mesh = CGAL::hex_mesh_scaled_jacobians(m);
+  const std::vector<double> sj_lcc = CGAL::hex_mesh_scaled_jacobians(lcc);
+  HMO_CHECK(sj_lcc.size() == sj_mesh.size());
+  for(std::size_t h = 0; h < sj_mesh.size() && h < sj_lcc.size(); ++h)
+    HMO_CHECK_CLOSE(sj_lcc[h], sj_mesh[h], 1e-15);
+  const CGAL::Hex_mesh_quality qm = CGAL::hex_mesh_quality(m), ql = CGAL::hex_mesh_quality(lcc);
+  HMO_CHECK(ql.hexes == qm.hexes && ql.vertices == qm.vertices && ql.inverted == qm.inverted);
+  HMO_CHECK(ql.msj == qm.msj && ql.asj == qm.asj && ql.histogram == qm.histogram);
+
+  // round trip
+  Mesh back;
+  HMO_CHECK(CGAL::indexed_hex_mesh_from_linear_cell_complex(lcc, back));
+  HMO_CHECK(back.points == m.points);
+  HMO_CHECK(back.hexahedra == m.hexahedra);
+
+  // the walk gives the same hexahedron from any of its 24 darts: a hex with
+  // no symmetry has the same scaled Jacobian from every start
+  {
+    Hex_points p = box(1, 1.3, 0.8);
+    p[6] = Point(1.2, 1.5, 0.9);
+    p[1] = Point(1.1, 0.1, -0.05);
+    Mesh one;
+    one.points.assign(p.begin(), p.end());
+    one.hexahedra.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+    LCC single;
+    HMO_CHECK(CGAL::build_linear_cell_complex(one, single));
+    const double expected = CGAL::hex_scaled_jacobian(p);
+    std::size_t count = 0;
+    for(auto d = single.darts().begin(); d != single.darts().end(); ++d, ++count)
+    {
+      const auto f = CGAL::Hexahedral_mesh_optimization::internal::lcc_hexahedron_faces(
+          single, LCC::Dart_const_handle(d));
+      const std::array<LCC::Dart_const_handle, 8> v = {
+          f[0], single.beta(f[0], 0), single.beta(f[1], 0), single.beta(f[4], 0),
+          single.beta(f[0], 1), single.beta(f[0], 1, 1), single.beta(f[1], 1, 1), single.beta(f[5], 1)};
+      Hex_points q;
+      for(int i = 0; i < 8; ++i)
+        q[i] = single.point(v[i]);
+      HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(q), expected, 1e-14);
+    }
+    HMO_CHECK(count == 24);
+  }
+
+  // write_back through the adapter moves the vertex attributes
+  {
+    typedef CGAL::Hexahedral_mesh_optimization::internal::Hex_mesh_adapter<LCC> Adapter;
+    CGAL::Hexahedral_mesh_optimization::internal::Hex_mesh_arrays a = Adapter::extract(lcc, K());
+    a.points[0] = {0., 0., 0.};
+    Adapter::write_back(a, lcc, K());
+    const CGAL::Hex_mesh_quality fixed = CGAL::hex_mesh_quality(lcc);
+    HMO_CHECK(fixed.inverted == 0);
+    HMO_CHECK_CLOSE(fixed.msj, 1., 1e-12);
+  }
+
+  // non-manifold: a third hex on an interior face
+  {
+    Mesh bad = grid(2, 1, 1);
+    const std::size_t n = bad.points.size();
+    for(int i = 0; i < 4; ++i)
+      bad.points.push_back(Point(1, 0.5 * i, 2));
+    // reuse the face (1, 4, 10, 7) shared by hexes 0 and 1 as the bottom of a third one
+    bad.hexahedra.push_back({1, 4, 10, 7, n, n + 1, n + 2, n + 3});
+    LCC l;
+    std::string why;
+    HMO_CHECK(!CGAL::build_linear_cell_complex(bad, l, &why));
+    HMO_CHECK(why.find("not manifold") != std::string::npos);
+    HMO_CHECK(l.number_of_darts() == 0);
+  }
+
+  // one hex numbered inside out: its shared face has the wrong orientation
+  {
+    Mesh bad = grid(2, 1, 1);
+    auto& h = bad.hexahedra[1];
+    h = {h[4], h[5], h[6], h[7], h[0], h[1], h[2], h[3]};
+    LCC l;
+    std::string why;
+    HMO_CHECK(!CGAL::build_linear_cell_complex(bad, l, &why));
+    HMO_CHECK(why.find("orientation") != std::string::npos);
+  }
+
+  // an index out of range
+  {
+    Mesh bad = grid(1, 1, 1);
+    bad.hexahedra[0][3] = 99;
+    LCC l;
+    std::string why;
+    HMO_CHECK(!CGAL::build_linear_cell_complex(bad, l, &why));
+    HMO_CHECK(why.find("99") != std::string::npos);
+  }
+
+  // a 3-cell that is not a hexahedron
+  {
+    LCC l;
+    l.make_tetrahedron(Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1));
+    Mesh out;
+    std::string why;
+    HMO_CHECK(!CGAL::indexed_hex_mesh_from_linear_cell_complex(l, out, &why));
+    HMO_CHECK(why.find("not a hexahedron") != std::string::npos);
+    bool thrown = false;
+    try { CGAL::hex_mesh_quality(l); } catch(const std::invalid_argument&) { thrown = true; }
+    HMO_CHECK(thrown);
+  }
+
+  // CGAL's own make_hexahedron (its picture order) + sew3_same_facets reads
+  // back as the same grid up to a rotation of each hex: same quality
+  {
+    const Mesh g = grid(2, 2, 1);
+    LCC l;
+    for(const auto& h : g.hexahedra)
+      l.make_hexahedron(g.points[h[0]], g.points[h[1]], g.points[h[2]], g.points[h[3]],
+                        g.points[h[7]], g.points[h[4]], g.points[h[5]], g.points[h[6]]);
+    l.sew3_same_facets();
+    const CGAL::Hex_mesh_quality q = CGAL::hex_mesh_quality(l);
+    HMO_CHECK(q.hexes == 4);
+    HMO_CHECK(q.inverted == 0);
+    HMO_CHECK_CLOSE(q.msj, 1., 1e-12);
+  }
+}
+
+/// a row of the tables of the shared data's README.md (asj < -0.5: not given)
+struct Published
+{
+  const char* file;
+  std::size_t hexes;
+  std::size_t inverted;
+  double msj;
+  double asj;
+};
+
+void test_shared_meshes()
+{
+  const std::string dir = hmo_test::shared_data_dir();
+  if(dir.empty())
+    return;
+  const Published table[] = {
+    {"edge-cone/block_in.mesh", 2520, 31, -0.697, -1},
+    {"edge-cone/bunny_in.mesh", 37734, 1, -0.003, -1},
+    {"edge-cone/bust_in.mesh", 5258, 30, -0.597, -1},
+    {"edge-cone/cap_in.mesh", 4420, 50, -0.937, -1},
+    {"edge-cone/hanger_stresstest_in.mesh", 4539, 3930, -0.999, -1},
+    {"edge-cone/impeller_stresstest_in.mesh", 11174, 8857, -0.999, -1},
+    {"inverted/bunny_dualsheet.vtk", 2832, 45, -0.771, -1},
+    {"inverted/hex_torus.vtk", 7380, 121, -0.508, -1},
+    {"amips/fertility_gregson11.mesh", 19870, 0, 0.196, 0.911},
+    {"amips/rockerarm_li12.vtk", 10600, 0, 0.209, 0.866},
+    {"low-quality/kitten_with_bifur_2.mesh", 2928, 0, 0.006, 0.774},
+    {"low-quality/cat_2.mesh", 2604, 0, 0.046, 0.858},
+    {"low-quality/Dolphin_2.mesh", 4788, 0, 0.034, 0.876},
+    {"stress-base/fandisk.vtk", 357, 0, 0.609, 0.936},
+    {"stress-base/kitty.vtk", 7083, 0, 0.424, 0.910},
+    {"stress-base/hanger.vtk", 4539, 0, 0.599, 0.964},
+  };
+  for(const Published& p : table)
+  {
+    const std::string file = dir + "/" + p.file;
+    Mesh m;
+    CGAL::IO::Hex_mesh_io_error err;
+    std::vector<std::string> warnings;
+    if(!CGAL::IO::read_hex_mesh(file, m, &err, &warnings))
+    {
+      std::cerr << "cannot read " << file << ": " << err.what() << std::endl;
+      HMO_CHECK(false);
+      continue;
+    }
+    const CGAL::Hex_mesh_quality q = CGAL::hex_mesh_quality(m);
+    std::cout << p.file << ": " << q.hexes << " hexes, " << q.inverted << " inverted, MSJ "
+              << q.msj << ", ASJ " << q.asj << std::endl;
+    HMO_CHECK(q.hexes == p.hexes);
+    HMO_CHECK(q.inverted == p.inverted);
+    HMO_CHECK_CLOSE(q.msj, p.msj, 0.0005);
+    if(p.asj > -0.5)
+      HMO_CHECK_CLOSE(q.asj, p.asj, 0.0005);
+  }
+
+  // the same figures through a linear cell complex, and its timings
+  for(const char* name : {"edge-cone/bunny_in.mesh", "inverted/bunny_dualsheet.vtk", "inverted/hex_torus.vtk"})
+  {
+    const std::string file = dir + "/" + name;
+    Mesh m;
+    if(!CGAL::IO::read_hex_mesh(file, m, nullptr, nullptr))
+    {
+      HMO_CHECK(false);
+      continue;
+    }
+    typedef std::chrono::steady_clock Clock;
+    LCC lcc;
+    std::string why;
+    const auto t0 = Clock::now();
+    const bool built = CGAL::build_linear_cell_complex(m, lcc, &why);
+    const auto t1 = Clock::now();
+    HMO_CHECK(built);
+    if(!built)
+    {
+      std::cerr << name << ": " << why << std::endl;
+      continue;
+    }
+    const CGAL::Hex_mesh_quality ql = CGAL::hex_mesh_quality(lcc);
+    const auto t2 = Clock::now();
+    const CGAL::Hex_mesh_quality qm = CGAL::hex_mesh_quality(m);
+    HMO_CHECK(ql.hexes == qm.hexes && ql.vertices == qm.vertices && ql.inverted == qm.inverted);
+    HMO_CHECK(ql.msj == qm.msj && ql.asj == qm.asj);
+    Mesh back;
+    HMO_CHECK(CGAL::indexed_hex_mesh_from_linear_cell_complex(lcc, back));
+    HMO_CHECK(back.points == m.points && back.hexahedra == m.hexahedra);
+    check_sewing(lcc, m);
+    std::cout << name << ": LCC build " << std::chrono::duration<double>(t1 - t0).count()
+              << " s, LCC quality (extract + SJ) " << std::chrono::duration<double>(t2 - t1).count()
+              << " s" << std::endl;
+  }
+}
+
+} // namespace
+
+int main()
+{
+  test_scaled_jacobian();
+  test_quality_statistics();
+  test_linear_cell_complex();
+  test_shared_meshes();
+  return hmo_test::report("test_quality_and_lcc");
+}
