@@ -18,6 +18,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <stdexcept>
@@ -322,6 +323,33 @@ void test_linear_cell_complex()
     bool thrown = false;
     try { CGAL::hex_mesh_quality(l); } catch(const std::invalid_argument&) { thrown = true; }
     HMO_CHECK(thrown);
+  }
+
+  // I/O through the linear cell complex: write, read back, same mesh
+  {
+    const std::string file = "test_quality_and_lcc_roundtrip.vtk";
+    CGAL::IO::Hex_mesh_fields fields;
+    fields.cell_scalars.push_back({"scaled_jacobian", CGAL::hex_mesh_scaled_jacobians(lcc)});
+    CGAL::IO::Hex_mesh_io_error err;
+    HMO_CHECK(CGAL::IO::write_hex_mesh(file, lcc, fields, &err));
+    LCC read_back;
+    std::vector<std::string> warnings;
+    HMO_CHECK(CGAL::IO::read_hex_mesh(file, read_back, &err, &warnings));
+    HMO_CHECK(warnings.empty());
+    Mesh a, b;
+    HMO_CHECK(CGAL::indexed_hex_mesh_from_linear_cell_complex(lcc, a));
+    HMO_CHECK(CGAL::indexed_hex_mesh_from_linear_cell_complex(read_back, b));
+    HMO_CHECK(a.points == b.points && a.hexahedra == b.hexahedra);
+    std::remove(file.c_str());
+
+    LCC none;
+    HMO_CHECK(!CGAL::IO::read_hex_mesh("no_such_file.mesh", none, &err));
+    HMO_CHECK(err.what().find("no_such_file.mesh") != std::string::npos);
+    LCC tet;
+    tet.make_tetrahedron(Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1));
+    HMO_CHECK(!CGAL::IO::write_hex_mesh(file, tet, CGAL::IO::Hex_mesh_fields(), &err));
+    HMO_CHECK(err.what().find("not a hexahedron") != std::string::npos);
+    HMO_CHECK(!hmo_test::file_exists(file));
   }
 
   // CGAL's own make_hexahedron (its picture order) + sew3_same_facets reads
