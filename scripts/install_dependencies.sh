@@ -1,0 +1,27 @@
+#!/bin/bash
+# Installs the Debian 12 packages that building and testing the package need,
+# if any is missing. Run as root (or with sudo available); non-interactive.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+
+packages=(cmake make g++ libcgal-dev libeigen3-dev libboost-dev libtet1.5-dev libtbb-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_dependencies: all packages present (${packages[*]})"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  sudo="sudo"
+fi
+echo "install_dependencies: installing ${missing[*]}"
+$sudo apt-get update
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
