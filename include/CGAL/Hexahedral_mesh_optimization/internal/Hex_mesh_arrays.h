@@ -56,6 +56,12 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
 }
 inline double squared_norm(const Vec3& a) { return dot(a, a); }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+/// a / |a|, or the zero vector
+inline Vec3 normalized(const Vec3& a)
+{
+  const double l = norm(a);
+  return l > 1e-300 ? (1. / l) * a : Vec3{0., 0., 0.};
+}
 
 // ------------------------------------------------------------ conversion
 /// Reads the coordinates of any CGAL point through its kernel's accessors.

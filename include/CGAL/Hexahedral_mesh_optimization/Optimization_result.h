@@ -1,0 +1,69 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_OPTIMIZATION_RESULT_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_OPTIMIZATION_RESULT_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+What one stage of an optimisation did.
+*/
+struct Stage_report
+{
+  std::string name;               ///< e.g. "edge-angle", "barrier"
+  std::size_t inverted_before = 0;
+  std::size_t inverted_after = 0;
+  double msj_after = 0.;
+  double seconds = 0.;
+  int rounds = 0;                 ///< rounds (edge-angle) or passes (barrier)
+  std::string details;            ///< human-readable summary (α, β reached, steps, ...)
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+The result of `untangle_hex_mesh()`: never a bare bool.
+
+`success` is true when the mesh has no inverted element at the end. Whatever
+the outcome, the mesh returned has no more inverted elements than the input
+and, at equal counts, an MSJ no lower: when the optimisation could not do
+better, the input positions are kept (`kept_input` is then true).
+*/
+struct Optimization_result
+{
+  bool success = false;
+  bool kept_input = false;
+  std::size_t inverted_before = 0, inverted_after = 0;
+  double msj_before = 0., msj_after = 0.;
+  double asj_before = 0., asj_after = 0.;
+  /// Hausdorff distance between the output boundary and the reference
+  /// surface, relative to the reference's bounding-box diagonal
+  double surface_error = 0.;
+  double seconds = 0.;
+  std::vector<Stage_report> stages;
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+The default visitor: every hook does nothing. A user visitor derives from it
+(or provides the same functions) to follow progress.
+*/
+struct Default_optimization_visitor
+{
+  void stage_started(const std::string& /*name*/, std::size_t /*bad_elements*/) {}
+  void round_finished(const std::string& /*stage*/, int /*round*/, std::size_t /*bad_elements_left*/) {}
+  void stage_finished(const Stage_report& /*report*/) {}
+};
+
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_OPTIMIZATION_RESULT_H

@@ -1,0 +1,243 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_HEX_MESH_UNTANGLER_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_HEX_MESH_UNTANGLER_H
+
+// The untangling pipeline on flat arrays (Sections 3.1 and 3.2):
+//   1. normalise the mesh (mean edge length 0.025, about its centroid) and
+//      the reference surface with it, so that α = β = 1000 mean the same on
+//      every model;
+//   2. target surface Ω_t and feature classification (Target_surface.h);
+//      ideal angles from the connectivity, with the measured dihedral angle
+//      of Ω_t on feature edges (Ideal_angles.h);
+//   3. stage "edge-angle": the local optimiser of Algorithm 1
+//      (Local_optimizer.h);
+//   4. stage "barrier": on what is left, the foldover-free energy
+//      (Barrier_untangler.h), region by region, each result kept only if the
+//      region's inverted count does not rise;
+//   5. scale back; if the result is worse than the input (more inverted, or
+//      as many with a lower MSJ), the input positions are kept.
+
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Barrier_untangler.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+
+#include <chrono>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Untangle_settings
+{
+  double sharp_angle = 165.;
+  double alpha = 1000., beta = 1000.;
+  double xi = 0.6;
+  bool relax_surface = true;
+  int local_iterations = 20;
+  int max_rounds = 60;
+  bool barrier_fallback = true;
+  double time_limit_seconds = 60.;
+  bool verbose = false;
+  /// optional reference surface (triangle soup, model coordinates)
+  const std::vector<Vec3>* reference_points = nullptr;
+  const std::vector<Tri>* reference_triangles = nullptr;
+};
+
+/// mean edge length 0.025 about the centroid: p' = s (p - c)
+struct Normalization
+{
+  double scale = 1.;
+  Vec3 centre = {0., 0., 0.};
+  Vec3 apply(const Vec3& p) const { return scale * (p - centre); }
+  Vec3 undo(const Vec3& p) const { return (1. / scale) * p + centre; }
+};
+
+inline Normalization normalization(const Hex_mesh_topology& topo, const std::vector<Vec3>& points)
+{
+  Normalization n;
+  double sum = 0.;
+  for(std::size_t e = 0; e < topo.number_of_edges(); ++e)
+    sum += norm(points[topo.edge(e)[0]] - points[topo.edge(e)[1]]);
+  const double mean = sum / (std::max)(std::size_t(1), topo.number_of_edges());
+  n.scale = mean > 0. ? 0.025 / mean : 1.;
+  for(const Vec3& p : points) n.centre = n.centre + p;
+  n.centre = (1. / (std::max)(std::size_t(1), points.size())) * n.centre;
+  return n;
+}
+
+template <class Visitor>
+class Hex_mesh_untangler
+{
+public:
+  Hex_mesh_untangler(const Untangle_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
+
+  Optimization_result run(Hex_mesh_arrays& mesh)
+  {
+    typedef std::chrono::steady_clock Clock;
+    const auto start = Clock::now();
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    Optimization_result res;
+    const Hex_mesh_arrays input = mesh;
+    const Quality_statistics q0 = quality_statistics(mesh);
+    res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
+
+    const Hex_mesh_topology topo(mesh);
+    const Normalization nz = normalization(topo, mesh.points);
+    for(Vec3& p : mesh.points) p = nz.apply(p);
+
+    Target_surface_parameters tsp;
+    tsp.feature_angle = m_s.sharp_angle;
+    std::unique_ptr<Target_surface> ts;
+    if(m_s.reference_points && m_s.reference_triangles)
+    {
+      std::vector<Vec3> rp;
+      rp.reserve(m_s.reference_points->size());
+      for(const Vec3& p : *m_s.reference_points) rp.push_back(nz.apply(p));
+      ts.reset(new Target_surface(mesh, rp, *m_s.reference_triangles, tsp));
+    }
+    else
+      ts.reset(new Target_surface(mesh, tsp));
+
+    std::vector<Vec3> omega = mesh.points;
+    ts->target_points(omega);
+    std::set<std::pair<std::size_t, std::size_t> > sharp;
+    for(std::size_t e = 0; e < ts->boundary().edges.size(); ++e)
+      if(ts->sharp_edges()[e]) sharp.insert({ts->boundary().edges[e][0], ts->boundary().edges[e][1]});
+    const Ideal_angles ideal(topo, boundary_edge_angles(topo, omega, [&](std::size_t a, std::size_t b) {
+                               return sharp.count(std::minmax(a, b)) != 0;
+                             }));
+
+    // ---- stage 1: the edge-angle local optimiser
+    {
+      const auto t = Clock::now();
+      Local_optimizer opt(topo, ideal,
+                          [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
+                            ts->update_constraints(p, bc);
+                          },
+                          ts->mean_boundary_edge_length());
+      opt.on_round = [&](int r, std::size_t left) {
+        m_visitor.round_finished("edge-angle", r, left);
+      };
+      Local_optimizer_settings ls;
+      ls.alpha = m_s.alpha; ls.beta = m_s.beta; ls.xi_start = m_s.xi;
+      ls.min_alpha_beta = m_s.relax_surface ? 1. : (std::min)(m_s.alpha, m_s.beta);
+      ls.local_iterations = m_s.local_iterations;
+      ls.max_rounds = m_s.max_rounds;
+      ls.time_limit_seconds = m_s.time_limit_seconds;
+      m_visitor.stage_started("edge-angle", q0.inverted);
+      const Local_optimizer_report r = opt.run(mesh.points, ls);
+      Stage_report sr;
+      sr.name = "edge-angle";
+      sr.inverted_before = r.inverted_before; sr.inverted_after = r.inverted_after;
+      sr.msj_after = quality_statistics(mesh).msj;
+      sr.seconds = since(t); sr.rounds = r.rounds;
+      std::ostringstream d;
+      d << r.accepted_steps << " steps accepted, " << r.rolled_back_steps << " rolled back; alpha = "
+        << r.final_alpha << ", beta = " << r.final_beta << " at the end";
+      sr.details = d.str();
+      res.stages.push_back(sr);
+      m_visitor.stage_finished(sr);
+    }
+
+    // ---- stage 2: barrier fallback on what is left
+    if(m_s.barrier_fallback && count_inverted(mesh) > 0)
+    {
+      const auto t = Clock::now();
+      Stage_report sr;
+      sr.name = "barrier";
+      sr.inverted_before = count_inverted(mesh);
+      m_visitor.stage_started("barrier", sr.inverted_before);
+      // boundary weight: moving a vertex one mean edge off its anchor costs
+      // as much as one well-shaped Jacobian sample (f = 3 for a cube)
+      const double wb = (m_s.relax_surface ? 1. : 1000.) / (0.025 * 0.025);
+      for(int pass = 0; pass < 4; ++pass)
+      {
+        std::vector<std::size_t> bad;
+        for(std::size_t h = 0; h < mesh.hexes.size(); ++h)
+          if(scaled_jacobian(mesh, h) <= 0.) bad.push_back(h);
+        if(bad.empty()) break;
+        ++sr.rounds;
+        std::vector<Boundary_constraint> bc;
+        ts->update_constraints(mesh.points, bc);
+        for(const Local_region& region : extract_local_regions(topo, bad, 2 + pass))
+        {
+          auto count = [&] {
+            std::size_t n = 0;
+            for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
+            return n;
+          };
+          const std::size_t before = count();
+          std::vector<Vec3> saved(region.free_vertices.size());
+          for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
+          Barrier_untangler(topo, region, bc, wb).run(mesh.points);
+          if(count() > before)
+            for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
+        }
+        m_visitor.round_finished("barrier", pass, count_inverted(mesh));
+      }
+      sr.inverted_after = count_inverted(mesh);
+      sr.msj_after = quality_statistics(mesh).msj;
+      sr.seconds = since(t);
+      sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
+      res.stages.push_back(sr);
+      m_visitor.stage_finished(sr);
+    }
+
+    for(Vec3& p : mesh.points) p = nz.undo(p);
+
+    // ---- never make the mesh worse
+    Quality_statistics q1 = quality_statistics(mesh);
+    if(q1.inverted > q0.inverted || (q1.inverted == q0.inverted && q1.msj < q0.msj))
+    {
+      mesh = input;
+      q1 = q0;
+      res.kept_input = true;
+    }
+    res.inverted_after = q1.inverted; res.msj_after = q1.msj; res.asj_after = q1.asj;
+    res.success = q1.inverted == 0;
+    res.surface_error = surface_error(mesh, input);
+    res.seconds = since(start);
+    return res;
+  }
+
+private:
+  static std::size_t count_inverted(const Hex_mesh_arrays& m)
+  {
+    std::size_t n = 0;
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= 0.) ++n;
+    return n;
+  }
+
+  double surface_error(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input) const
+  {
+    if(m_s.reference_points && m_s.reference_triangles)
+    {
+      Triangle_surface ref;
+      std::vector<Triangle_surface::Vertex_index> vi;
+      for(const Vec3& p : *m_s.reference_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+      for(const Tri& t : *m_s.reference_triangles) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+      return relative_surface_error(mesh, ref);
+    }
+    return relative_surface_error(mesh, input);
+  }
+
+  Untangle_settings m_s;
+  Visitor& m_visitor;
+};
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_HEX_MESH_UNTANGLER_H

@@ -1,0 +1,83 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H
+
+// The package's own named parameters. CGAL 5.5 offers no way for a package
+// to add chainable member functions to `CGAL::Named_function_parameters`, so
+// each of them is a free function in `CGAL::hex_mesh_parameters` that takes,
+// as an optional last argument, the parameters it is chained to:
+//
+//   CGAL::untangle_hex_mesh(mesh,
+//       CGAL::hex_mesh_parameters::sharp_angle(160.,
+//       CGAL::hex_mesh_parameters::reference_surface(surface,
+//       CGAL::parameters::number_of_iterations(40))));
+//
+// CGAL's own parameters (geom_traits, number_of_iterations, verbose,
+// visitor) are read as usual.
+
+#include <CGAL/Named_function_parameters.h>
+
+namespace CGAL {
+namespace hex_mesh_internal_np {
+
+enum reference_surface_t { reference_surface };
+enum sharp_angle_t { sharp_angle };
+enum alpha_t { alpha };
+enum beta_t { beta };
+enum xi_t { xi };
+enum relax_surface_t { relax_surface };
+enum local_iterations_t { local_iterations };
+enum barrier_fallback_t { barrier_fallback };
+enum time_limit_t { time_limit };
+
+} // namespace hex_mesh_internal_np
+
+namespace hex_mesh_parameters {
+
+#define CGAL_HMO_ADD_PARAMETER(NAME)                                                       \
+  template <class K, class T, class Tag, class Base>                                       \
+  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,  \
+                                  CGAL::Named_function_parameters<T, Tag, Base> >          \
+  NAME(const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& base)              \
+  {                                                                                        \
+    return CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t, \
+                                           CGAL::Named_function_parameters<T, Tag, Base> >(k, base); \
+  }                                                                                        \
+  template <class K>                                                                       \
+  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,  \
+                                  CGAL::parameters::Default_named_parameters>              \
+  NAME(const K& k)                                                                         \
+  {                                                                                        \
+    return NAME(k, CGAL::parameters::default_values());                                    \
+  }
+
+/// a triangle mesh (model of `FaceListGraph`, e.g. `Surface_mesh`) the
+/// boundary must stay on; default: the input's own boundary
+CGAL_HMO_ADD_PARAMETER(reference_surface)
+/// θ in degrees: boundary edges with a smaller dihedral angle are features (default 165)
+CGAL_HMO_ADD_PARAMETER(sharp_angle)
+/// weight of the feature-line and corner constraints of Eq. 6 (default 1000)
+CGAL_HMO_ADD_PARAMETER(alpha)
+/// weight of the tangent-plane constraint of Eq. 6 (default 1000)
+CGAL_HMO_ADD_PARAMETER(beta)
+/// initial ξ of the minimum target edge length ξ·(mean boundary edge) (default 0.6)
+CGAL_HMO_ADD_PARAMETER(xi)
+/// whether α and β may be halved so that the surface relaxes (default true)
+CGAL_HMO_ADD_PARAMETER(relax_surface)
+/// local-global iterations per region and round (default 20)
+CGAL_HMO_ADD_PARAMETER(local_iterations)
+/// whether the barrier stage runs on what the edge-angle stage left (default true)
+CGAL_HMO_ADD_PARAMETER(barrier_fallback)
+/// wall-clock budget in seconds of the edge-angle stage (default 60)
+CGAL_HMO_ADD_PARAMETER(time_limit)
+
+#undef CGAL_HMO_ADD_PARAMETER
+
+} // namespace hex_mesh_parameters
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H

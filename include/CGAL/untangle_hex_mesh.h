@@ -1,0 +1,191 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_UNTANGLE_HEX_MESH_H
+#define CGAL_UNTANGLE_HEX_MESH_H
+
+#include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/parameters.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_untangler.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <vector>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct No_reference_surface {};
+
+/// a FaceListGraph as a triangle soup (polygons fanned)
+template <class TriangleMesh, class GeomTraits>
+void face_graph_to_soup(const TriangleMesh& tm, const GeomTraits& gt, std::vector<Vec3>& points, std::vector<Tri>& tris)
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  auto vpm = get(CGAL::vertex_point, tm);
+  std::map<vertex_descriptor, std::size_t> index;
+  for(vertex_descriptor v : vertices(tm))
+  {
+    index.emplace(v, points.size());
+    points.push_back(to_vec3(get(vpm, v), gt));
+  }
+  for(auto f : faces(tm))
+  {
+    std::vector<std::size_t> poly;
+    for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm)) poly.push_back(index[v]);
+    for(std::size_t i = 1; i + 1 < poly.size(); ++i) tris.push_back({poly[0], poly[i], poly[i + 1]});
+  }
+}
+
+template <class GeomTraits>
+void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vector<Vec3>&, std::vector<Tri>&)
+{}
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+
+\brief Untangles a hexahedral mesh: moves its vertices, never its
+connectivity, until no element has a non-positive Verdict scaled Jacobian,
+keeping the boundary on a reference surface.
+
+The method is Sections 3.1 and 3.2 of Xu & Chen, "Hexahedral mesh quality
+improvement via edge-angle optimization" (Computers & Graphics, 2018): local
+regions around the inverted elements, the unified edge-angle energy with the
+boundary and feature constraints of its Eq. 6, solved by a local-global
+linearisation with monotone rollback (the number of inverted elements never
+rises from one accepted step to the next), and the paper's ξ / α / β schedule
+that lets the surface relax when it must. What that stage leaves is handed to
+a second stage, a foldover-free barrier energy on the 9 Jacobian samples of
+each hex (`barrier_fallback`). The result never has more inverted elements
+than the input: when nothing better is found the input is returned as it was.
+
+\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+  (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
+
+\param mesh the mesh, optimised in place
+\param np an optional sequence of named parameters among the ones listed below
+  (the package's own parameters live in `CGAL::hex_mesh_parameters`)
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{reference_surface}
+    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on}
+    \cgalParamType{a model of `FaceListGraph` with an internal vertex point map, e.g. `Surface_mesh`}
+    \cgalParamDefault{the boundary of the input mesh}
+  \cgalParamNEnd
+  \cgalParamNBegin{sharp_angle}
+    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
+    \cgalParamType{`double`}
+    \cgalParamDefault{165}
+  \cgalParamNEnd
+  \cgalParamNBegin{alpha}
+    \cgalParamDescription{initial weight of the feature and corner constraints}
+    \cgalParamType{`double`}
+    \cgalParamDefault{1000}
+  \cgalParamNEnd
+  \cgalParamNBegin{beta}
+    \cgalParamDescription{initial weight of the tangent-plane constraint}
+    \cgalParamType{`double`}
+    \cgalParamDefault{1000}
+  \cgalParamNEnd
+  \cgalParamNBegin{xi}
+    \cgalParamDescription{initial ξ: target edge lengths are at least ξ times the mean boundary edge length}
+    \cgalParamType{`double`}
+    \cgalParamDefault{0.6}
+  \cgalParamNEnd
+  \cgalParamNBegin{relax_surface}
+    \cgalParamDescription{whether α and β may be halved when the untangling stalls (the surface then moves)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{local_iterations}
+    \cgalParamDescription{local-global iterations per region and round}
+    \cgalParamType{`int`}
+    \cgalParamDefault{20}
+  \cgalParamNEnd
+  \cgalParamNBegin{number_of_iterations}
+    \cgalParamDescription{maximum number of rounds of the edge-angle stage}
+    \cgalParamType{`int`}
+    \cgalParamDefault{60}
+  \cgalParamNEnd
+  \cgalParamNBegin{barrier_fallback}
+    \cgalParamDescription{whether the barrier stage runs when the edge-angle stage leaves inverted elements}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{time_limit}
+    \cgalParamDescription{wall-clock budget of the edge-angle stage, in seconds}
+    \cgalParamType{`double`}
+    \cgalParamDefault{60}
+  \cgalParamNEnd
+  \cgalParamNBegin{visitor}
+    \cgalParamDescription{an object notified of stages and rounds}
+    \cgalParamType{a class with the functions of `Hexahedral_mesh_optimization::Default_optimization_visitor`}
+    \cgalParamDefault{`Hexahedral_mesh_optimization::Default_optimization_visitor`}
+  \cgalParamNEnd
+  \cgalParamNBegin{geom_traits}
+    \cgalParamDescription{an instance of a geometric traits class}
+    \cgalParamType{a model of `HexMeshOptimizationTraits`}
+    \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
+
+\returns what was done: inverted count and MSJ before and after, surface
+  error, time and a report per stage.
+*/
+template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
+Hexahedral_mesh_optimization::Optimization_result
+untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace HMO = Hexahedral_mesh_optimization;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+
+  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
+  HMO::Default_optimization_visitor default_visitor;
+  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
+
+  HMO::internal::Untangle_settings s;
+  s.sharp_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.);
+  s.alpha = choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.);
+  s.beta = choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.);
+  s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6);
+  s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
+  s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
+  s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
+  s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
+  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 60.);
+
+  std::vector<HMO::internal::Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::face_graph_to_soup(
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), HMO::internal::No_reference_surface()),
+    gt, ref_points, ref_tris);
+  if(!ref_tris.empty())
+  {
+    s.reference_points = &ref_points;
+    s.reference_triangles = &ref_tris;
+  }
+
+  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
+  const HMO::Optimization_result result = untangler.run(arrays);
+  Adapter::write_back(arrays, mesh, gt);
+  return result;
+}
+
+} // namespace CGAL
+
+#endif // CGAL_UNTANGLE_HEX_MESH_H
