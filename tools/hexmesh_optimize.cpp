@@ -17,6 +17,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/hex_mesh_quality.h>
+#include <CGAL/hex_mesh_surface_error.h>
 
 #include <cctype>
 #include <chrono>
@@ -114,13 +115,17 @@ int main(int argc, char** argv)
     const bool has_output = !options.output.empty();
     if(has_output)
     {
+      const Mesh input_mesh = mesh; // the reference of the surface error
       const Clock::time_point start = Clock::now();
       if(!run_stages(mesh, options, out, error))
         return fail(error);
+      after.seconds = seconds_since(start);
       const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(mesh);
       after.file = options.output;
       after.quality = CGAL::hex_mesh_quality(mesh);
-      after.seconds = seconds_since(start);
+      // Hausdorff distance between the output and input boundaries, relative
+      // to the diagonal of the input's bounding box
+      after.surface_error = CGAL::hex_mesh_surface_error(mesh, input_mesh);
 
       CGAL::IO::Hex_mesh_fields fields;
       if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))

@@ -31,10 +31,11 @@ struct Mesh_report
   std::string file;
   CGAL::Hex_mesh_quality quality;
   /// wall time of what produced this state (input: read + quality;
-  /// output: optimisation + quality), negative when not measured
+  /// output: the optimisation stages), negative when not measured
   double seconds = -1.;
-  /// relative Hausdorff distance to the input surface, negative when not
-  /// measured (JSON null)
+  /// Hausdorff distance between this boundary and the input's, relative to
+  /// the diagonal of the input's bounding box; negative when not measured
+  /// (JSON null)
   double surface_error = -1.;
 };
 
@@ -79,7 +80,8 @@ inline void print_quality_report(std::ostream& out, const std::string& title, co
       << "  MSJ         " << format_fixed(q.msj, 4) << "\n"
       << "  ASJ         " << format_fixed(q.asj, 4) << "\n";
   if(r.surface_error >= 0.)
-    out << "  surface err " << format_fixed(r.surface_error, 5) << " (of the bounding-box diagonal)\n";
+    out << "  surface error " << format_fixed(r.surface_error, 5)
+        << " (Hausdorff distance to the input boundary / its bounding-box diagonal)\n";
   out << "  scaled Jacobian histogram (bars scale with the count; '#' at least for any count):\n";
   std::size_t max_count = 0;
   for(std::size_t c : q.histogram)

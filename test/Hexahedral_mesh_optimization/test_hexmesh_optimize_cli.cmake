@@ -129,9 +129,11 @@ if(EXISTS ${WORK}/report.json)
   endif()
   check("the histogram counts every hex (${sum})" sum EQUAL 2832)
   foreach(key file hexes vertices inverted msj asj histogram seconds surface_error)
-    string(JSON t ERROR_VARIABLE e TYPE "${json}" output ${key})
+    string(JSON t_${key} ERROR_VARIABLE e TYPE "${json}" output ${key})
     check("output.${key}: ${e}" NOT e)
   endforeach()
+  check("output.seconds is a number (${t_seconds})" t_seconds STREQUAL "NUMBER")
+  check("output.surface_error is measured (${t_surface_error})" t_surface_error STREQUAL "NUMBER")
 endif()
 
 # report only, to a .mesh output
