@@ -12,6 +12,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/lcc_hex_mesh_io.h>
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/hex_mesh_quality.h>
 
 #include <algorithm>
@@ -350,6 +351,18 @@ void test_linear_cell_complex()
     HMO_CHECK(!CGAL::IO::write_hex_mesh(file, tet, CGAL::IO::Hex_mesh_fields(), &err));
     HMO_CHECK(err.what().find("not a hexahedron") != std::string::npos);
     HMO_CHECK(!hmo_test::file_exists(file));
+  }
+
+  // another kernel on the LCC side: points are converted both ways
+  {
+    typedef CGAL::Simple_cartesian<double> SC;
+    typedef CGAL::Linear_cell_complex_for_combinatorial_map<3, 3, CGAL::Linear_cell_complex_traits<3, SC> > SC_LCC;
+    SC_LCC l;
+    HMO_CHECK(CGAL::build_linear_cell_complex(m, l));
+    HMO_CHECK(CGAL::hex_mesh_quality(l).inverted == 1);
+    Mesh again;
+    HMO_CHECK(CGAL::indexed_hex_mesh_from_linear_cell_complex(l, again));
+    HMO_CHECK(again.points == m.points && again.hexahedra == m.hexahedra);
   }
 
   // CGAL's own make_hexahedron (its picture order) + sew3_same_facets reads
