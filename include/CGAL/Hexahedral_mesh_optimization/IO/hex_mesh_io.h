@@ -1,0 +1,302 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H
+
+// Reading and writing `Indexed_hex_mesh` in the MEDIT (.mesh), legacy VTK
+// (.vtk) and VTK XML (.vtu) formats. Every reader validates the mesh it
+// parsed (validate_hex_mesh.h) and names the offending record of the file;
+// every writer refuses an invalid mesh and replaces its target atomically.
+
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Read_context.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_MEDIT.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_VTK.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_VTU.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_MEDIT.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_VTK.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_VTU.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
+#include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+namespace io {
+
+/// runs a reader, turning an exception (out of memory) into an error
+template <class Read>
+bool guarded_read(const std::string& fname, CGAL::IO::Hex_mesh_io_error* err,
+                  std::vector<std::string>* warnings, const Read& read)
+{
+  const Read_context ctx(fname, err, warnings);
+  try
+  {
+    return read(ctx);
+  }
+  catch(const std::bad_alloc&)
+  {
+    return ctx.fail(0, "out of memory");
+  }
+  catch(const std::exception& e)
+  {
+    return ctx.fail(0, std::string("cannot read: ") + e.what());
+  }
+}
+
+enum class Hex_mesh_format { medit, vtk, vtu, unknown };
+
+/// the format named by the extension of `fname` (case-insensitive); on
+/// failure `why` explains
+inline Hex_mesh_format hex_mesh_format(const std::string& fname, std::string& why)
+{
+  const std::size_t slash = fname.find_last_of("/\\");
+  const std::size_t dot = fname.find_last_of('.');
+  if(dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    why = "no file extension: expected .mesh, .vtk or .vtu";
+    return Hex_mesh_format::unknown;
+  }
+  const std::string ext = to_lower(fname.substr(dot));
+  if(ext == ".mesh")
+    return Hex_mesh_format::medit;
+  if(ext == ".vtk")
+    return Hex_mesh_format::vtk;
+  if(ext == ".vtu")
+    return Hex_mesh_format::vtu;
+  if(ext == ".meshb")
+    why = "binary MEDIT files (.meshb) are not supported: convert to ASCII .mesh";
+  else
+    why = "unknown file extension '" + fname.substr(dot) + "': expected .mesh, .vtk or .vtu";
+  return Hex_mesh_format::unknown;
+}
+
+} // namespace io
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+
+namespace IO {
+
+/// \name Reading
+/// @{
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads an ASCII MEDIT file (`.mesh`) holding a hexahedral mesh.
+
+Read: `MeshVersionFormatted`, `Dimension` (must be 3), `Vertices`,
+`Hexahedra`, and the optional `Quadrilaterals`, `Triangles`, `Edges`,
+`Corners`, `Ridges` with their references, up to `End`. Indices are 1-based
+in the file and 0-based in `mesh`. Lines starting with `#` are comments.
+Sections of no use here whose layout is known (`Normals`,
+`RequiredVertices`, ...) are skipped with a warning; a non-empty section of
+other volume cells (`Tetrahedra`, `Prisms`, `Pyramids`) or an unknown keyword
+is an error. The parsed mesh must pass `validate_hex_mesh()`.
+
+\tparam Point a model of `Kernel::Point_3`; points are built from doubles by
+        the kernel of `Kernel_traits<Point>`
+\param fname the file to read
+\param mesh receives the mesh; left unchanged on failure
+\param err if not null, receives the reason of a failure, with the line of the
+       file, e.g. "Hexahedra record 12 (line 3201): vertex 5 repeated (positions 1 and 6 of 8)"
+\param warnings if not null, receives a message per tolerated oddity
+\return `true` on success
+*/
+template <class Point>
+bool read_MEDIT(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+                Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_MEDIT_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads a legacy VTK file (`.vtk`), ASCII or BINARY, holding an
+unstructured grid of hexahedra.
+
+The cells are read from `CELLS` (classic layout, or the `OFFSETS` /
+`CONNECTIVITY` layout of format 5.1) and `CELL_TYPES`; binary data is
+big-endian, as the format specifies. Attribute data (`CELL_DATA`,
+`POINT_DATA`, `FIELD`) is skipped. Cells must be hexahedra (VTK type 12);
+voxels (type 11) are reordered into hexahedra, and 8-node cells labelled as
+tetrahedra (type 10), a quirk of some published meshes, are read as
+hexahedra; both come with a warning. Any other cell is an error naming it.
+The parsed mesh must pass `validate_hex_mesh()`.
+
+Parameters and result as for `read_MEDIT()`; cells and points are numbered
+from 0 in messages, as in ParaView.
+*/
+template <class Point>
+bool read_VTK(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+              Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_VTK_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads a VTK XML unstructured grid (`.vtu`) of hexahedra whose points
+and cells are stored as text (`format="ascii"`), as `write_VTU()` writes them.
+
+Binary, appended or compressed arrays are refused with a message saying so.
+`PointData` and `CellData` are ignored. Cell types are handled as by
+`read_VTK()`. Parameters and result as for `read_MEDIT()`.
+*/
+template <class Point>
+bool read_VTU(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+              Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_VTU_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads a hexahedral mesh, choosing the reader by the extension of
+`fname` (case-insensitive): `.mesh` (`read_MEDIT()`), `.vtk` (`read_VTK()`)
+or `.vtu` (`read_VTU()`). Any other extension is an error.
+
+Parameters and result as for `read_MEDIT()`.
+*/
+template <class Point>
+bool read_hex_mesh(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+                   Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  std::string why;
+  switch(io::hex_mesh_format(fname, why))
+  {
+  case io::Hex_mesh_format::medit: return read_MEDIT(fname, mesh, err, warnings);
+  case io::Hex_mesh_format::vtk: return read_VTK(fname, mesh, err, warnings);
+  case io::Hex_mesh_format::vtu: return read_VTU(fname, mesh, err, warnings);
+  default: return io::write_failure(fname, err, why);
+  }
+}
+
+/// @}
+
+/// \name Writing
+/// All writers refuse a mesh that fails `validate_hex_mesh()` and fields of
+/// the wrong size. They write to a temporary file in the directory of
+/// `fname` and rename it to `fname` only when everything was written: on
+/// failure no file is left behind and an existing `fname` is untouched.
+/// Coordinates are written in the shortest decimal form that reads back to
+/// the same double, so that a round trip is exact.
+/// @{
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` as an ASCII MEDIT file (`.mesh`), with its optional
+sections (quadrilaterals, triangles, edges, corners, ridges) and references
+(0 where the mesh has none).
+
+\param fname the file to write
+\param mesh the mesh
+\param err if not null, receives the reason of a failure
+\return `true` on success
+*/
+template <class Point>
+bool write_MEDIT(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+                 Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_MEDIT_file(fname, mesh, err); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` as a legacy VTK unstructured grid (`.vtk`) of hexahedra
+(cell type 12), with `fields` as `CELL_DATA` and `POINT_DATA` scalars.
+
+Only the points and hexahedra of the mesh are written: the optional MEDIT
+sections have no place in this format.
+
+\param fname the file to write
+\param mesh the mesh
+\param fields scalar fields, one value per hexahedron or per vertex
+\param err if not null, receives the reason of a failure
+\param binary `true` for the BINARY variant (big-endian doubles and 32-bit
+       integers), `false` for ASCII
+\return `true` on success
+*/
+template <class Point>
+bool write_VTK(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+               const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr,
+               bool binary = false)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_VTK_file(fname, mesh, fields, err, binary); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` as a VTK XML unstructured grid (`.vtu`, ascii data
+arrays) of hexahedra, with `fields` as `CellData` and `PointData`; the first
+field of each kind is the active scalar, so that ParaView colours the mesh by
+it (for instance by the per-hexahedron scaled Jacobian).
+
+Only the points and hexahedra of the mesh are written. Parameters and result
+as for `write_VTK()`.
+*/
+template <class Point>
+bool write_VTU(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+               const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_VTU_file(fname, mesh, fields, err); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh`, choosing the format by the extension of `fname`
+(case-insensitive): `.mesh` (`write_MEDIT()`; MEDIT has no place for
+`fields`, which are then ignored), `.vtk` (`write_VTK()`, ASCII) or `.vtu`
+(`write_VTU()`). Any other extension is an error and nothing is written.
+
+Parameters and result as for `write_VTK()`.
+*/
+template <class Point>
+bool write_hex_mesh(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+                    const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  std::string why;
+  switch(io::hex_mesh_format(fname, why))
+  {
+  case io::Hex_mesh_format::medit: return write_MEDIT(fname, mesh, err);
+  case io::Hex_mesh_format::vtk: return write_VTK(fname, mesh, fields, err, false);
+  case io::Hex_mesh_format::vtu: return write_VTU(fname, mesh, fields, err);
+  default: return io::write_failure(fname, err, why);
+  }
+}
+
+/// @}
+
+} // namespace IO
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H

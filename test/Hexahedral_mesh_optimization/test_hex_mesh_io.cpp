@@ -1,0 +1,824 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Hex mesh I/O and validation: round trips in every format, one bad input
+// per diagnosed problem (message, line, no output file), atomic writes, and
+// every mesh of the shared benchmark data.
+
+#include "test_util.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+#include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <stdlib.h>  // mkdtemp
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Indexed_hex_mesh<Point> Mesh;
+
+using CGAL::IO::Hex_mesh_io_error;
+using CGAL::IO::Hex_mesh_fields;
+
+namespace {
+
+// ----------------------------------------------------------------- helpers
+
+std::string g_dir;  // the temporary folder of this run
+
+std::string path(const std::string& name) { return g_dir + "/" + name; }
+
+void write_text(const std::string& file, const std::string& text)
+{
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+std::string read_text(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+/// files of the temporary folder whose name contains `part`
+std::size_t files_containing(const std::string& part)
+{
+  std::size_t n = 0;
+  for(const auto& e : std::filesystem::directory_iterator(g_dir))
+    if(contains(e.path().filename().string(), part))
+      ++n;
+  return n;
+}
+
+/// a 2x2x2 grid of hexahedra with coordinates that need all 17 digits, and
+/// every optional MEDIT section
+Mesh grid_mesh(bool with_sections = true)
+{
+  Mesh m;
+  auto id = [](int i, int j, int k) { return std::size_t(i + 3 * j + 9 * k); };
+  for(int k = 0; k < 3; ++k)
+    for(int j = 0; j < 3; ++j)
+      for(int i = 0; i < 3; ++i)
+        m.points.push_back(Point(i / 3. + std::sqrt(2.) * 1e-3 * (j + 1), j / 7. - std::exp(-k - 1.) * 1e-2,
+                                 k * 0.1 + std::acos(-1.) * 1e-17 * (i + 1)));
+  for(int k = 0; k < 2; ++k)
+    for(int j = 0; j < 2; ++j)
+      for(int i = 0; i < 2; ++i)
+        m.hexahedra.push_back({{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)}});
+  if(!with_sections)
+    return m;
+  for(std::size_t i = 0; i < m.points.size(); ++i)
+    m.point_references.push_back(int(i % 3) - 1);
+  for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+    m.hexahedron_references.push_back(int(h) + 10);
+  for(int j = 0; j < 2; ++j)  // bottom boundary
+    for(int i = 0; i < 2; ++i)
+    {
+      m.quadrilaterals.push_back({{id(i, j, 0), id(i, j + 1, 0), id(i + 1, j + 1, 0), id(i + 1, j, 0)}});
+      m.quadrilateral_references.push_back(7);
+    }
+  m.triangles.push_back({{id(0, 0, 2), id(1, 0, 2), id(1, 1, 2)}});
+  m.triangle_references.push_back(3);
+  m.edges.push_back({{id(0, 0, 0), id(1, 0, 0)}});
+  m.edges.push_back({{id(1, 0, 0), id(2, 0, 0)}});
+  m.edges.push_back({{id(0, 0, 0), id(0, 0, 1)}});
+  m.edge_references = {1, 1, 2};
+  m.corners = {id(0, 0, 0), id(2, 2, 2)};
+  m.ridges = {0, 2};
+  return m;
+}
+
+bool same_points(const Mesh& a, const Mesh& b)
+{
+  if(a.points.size() != b.points.size())
+    return false;
+  for(std::size_t i = 0; i < a.points.size(); ++i)  // exact equality: round trips must not lose bits
+    if(a.points[i].x() != b.points[i].x() || a.points[i].y() != b.points[i].y() ||
+       a.points[i].z() != b.points[i].z())
+      return false;
+  return true;
+}
+
+bool same_volume(const Mesh& a, const Mesh& b) { return same_points(a, b) && a.hexahedra == b.hexahedra; }
+
+bool same_everything(const Mesh& a, const Mesh& b)
+{
+  return same_volume(a, b) && a.point_references == b.point_references &&
+         a.hexahedron_references == b.hexahedron_references && a.quadrilaterals == b.quadrilaterals &&
+         a.quadrilateral_references == b.quadrilateral_references && a.triangles == b.triangles &&
+         a.triangle_references == b.triangle_references && a.edges == b.edges &&
+         a.edge_references == b.edge_references && a.corners == b.corners && a.ridges == b.ridges;
+}
+
+Hex_mesh_fields grid_fields(const Mesh& m)
+{
+  Hex_mesh_fields f;
+  std::vector<double> sj, ids, height;
+  for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+  {
+    sj.push_back(1. - 0.1 * double(h) / 3.);
+    ids.push_back(double(h));
+  }
+  for(const Point& p : m.points)
+    height.push_back(p.z());
+  f.cell_scalars.push_back({"scaled_jacobian", sj});
+  f.cell_scalars.push_back({"hex id", ids});  // a name with a blank
+  f.point_scalars.push_back({"height", height});
+  return f;
+}
+
+/// Reads `file` expecting failure: checks that every part appears in the
+/// message, the reported line (if `line` != 0), and that `sentinel` is unchanged.
+void expect_read_failure(const std::string& file, const std::vector<std::string>& parts, std::size_t line = 0)
+{
+  Mesh m = grid_mesh();
+  const Mesh before = m;
+  Hex_mesh_io_error err;
+  const bool ok = CGAL::IO::read_hex_mesh(file, m, &err);
+  HMO_CHECK(!ok);
+  HMO_CHECK(same_everything(m, before));
+  HMO_CHECK(err.file == file);
+  bool all = true;
+  for(const std::string& p : parts)
+    all = all && contains(err.what(), p);
+  if(!all || (line != 0 && err.line != line))
+  {
+    std::cerr << "unexpected error for " << file << ": '" << err.what() << "' (line " << err.line
+              << "), expected";
+    for(const std::string& p : parts)
+      std::cerr << " [" << p << "]";
+    if(line != 0)
+      std::cerr << " at line " << line;
+    std::cerr << std::endl;
+    ++hmo_test::failures();
+  }
+}
+
+void expect_read_failure_text(const std::string& name, const std::string& text,
+                              const std::vector<std::string>& parts, std::size_t line = 0)
+{
+  write_text(path(name), text);
+  expect_read_failure(path(name), parts, line);
+}
+
+/// reads text that must succeed; returns the mesh and the warnings
+Mesh expect_read_text(const std::string& name, const std::string& text, std::vector<std::string>* warnings = nullptr)
+{
+  write_text(path(name), text);
+  Mesh m;
+  Hex_mesh_io_error err;
+  const bool ok = CGAL::IO::read_hex_mesh(path(name), m, &err, warnings);
+  if(!ok)
+    std::cerr << name << ": " << err.what() << std::endl;
+  HMO_CHECK(ok);
+  return m;
+}
+
+// a valid MEDIT file of one unit cube, built from its parts
+const std::string medit_header = "MeshVersionFormatted 1\nDimension 3\n";
+const std::string medit_cube_vertices =
+  "Vertices\n8\n0 0 0 0\n1 0 0 0\n1 1 0 0\n0 1 0 0\n0 0 1 0\n1 0 1 0\n1 1 1 0\n0 1 1 0\n";
+
+// a legacy VTK file of one cube: header, points, cells
+const std::string vtk_header = "# vtk DataFile Version 3.0\ncube\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+const std::string vtk_cube_points = "POINTS 8 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
+
+// ----------------------------------------------------------------- round trips
+
+void test_round_trips()
+{
+  const Mesh m = grid_mesh();
+  const Hex_mesh_fields fields = grid_fields(m);
+  Hex_mesh_io_error err;
+
+  // MEDIT keeps everything
+  {
+    HMO_CHECK(CGAL::IO::write_MEDIT(path("grid.mesh"), m, &err));
+    Mesh r;
+    std::vector<std::string> warnings;
+    HMO_CHECK(CGAL::IO::read_MEDIT(path("grid.mesh"), r, &err, &warnings));
+    HMO_CHECK(same_everything(m, r));
+    HMO_CHECK(warnings.empty());
+    // and a second round trip gives the same bytes
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("grid2.mesh"), r, Hex_mesh_fields(), &err));
+    HMO_CHECK(read_text(path("grid.mesh")) == read_text(path("grid2.mesh")));
+  }
+  // without optional data, MEDIT references come back as zeros
+  {
+    const Mesh plain = grid_mesh(false);
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("plain.mesh"), plain, fields, &err));  // fields ignored
+    Mesh r;
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("plain.mesh"), r, &err));
+    HMO_CHECK(same_volume(plain, r));
+    HMO_CHECK(r.quadrilaterals.empty() && r.corners.empty() && r.ridges.empty());
+    HMO_CHECK(r.point_references == std::vector<int>(plain.points.size(), 0));
+    HMO_CHECK(r.hexahedron_references == std::vector<int>(plain.hexahedra.size(), 0));
+  }
+  // legacy VTK, ASCII and binary, with fields
+  for(int binary = 0; binary < 2; ++binary)
+  {
+    const std::string file = path(binary ? "grid_binary.vtk" : "grid_ascii.vtk");
+    HMO_CHECK(CGAL::IO::write_VTK(file, m, fields, &err, binary != 0));
+    Mesh r;
+    std::vector<std::string> warnings;
+    const bool ok = CGAL::IO::read_VTK(file, r, &err, &warnings);
+    if(!ok)
+      std::cerr << err.what() << std::endl;
+    HMO_CHECK(ok);
+    HMO_CHECK(same_volume(m, r));
+    HMO_CHECK(warnings.empty());
+    const std::string text = read_text(file);
+    HMO_CHECK(contains(text, binary ? "\nBINARY\n" : "\nASCII\n"));
+    HMO_CHECK(contains(text, "SCALARS scaled_jacobian double 1"));
+    HMO_CHECK(contains(text, "SCALARS hex%20id double 1"));
+    HMO_CHECK(contains(text, "POINT_DATA 27"));
+  }
+  // VTU with fields
+  {
+    HMO_CHECK(CGAL::IO::write_VTU(path("grid.vtu"), m, fields, &err));
+    Mesh r;
+    HMO_CHECK(CGAL::IO::read_VTU(path("grid.vtu"), r, &err));
+    HMO_CHECK(same_volume(m, r));
+    const std::string text = read_text(path("grid.vtu"));
+    HMO_CHECK(contains(text, "<CellData Scalars=\"scaled_jacobian\">"));
+    HMO_CHECK(contains(text, "Name=\"scaled_jacobian\""));
+    HMO_CHECK(contains(text, "<PointData Scalars=\"height\">"));
+    // dispatch by extension, in any case
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("GRID.VTU"), m, fields, &err));
+    Mesh r2;
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("GRID.VTU"), r2, &err));
+    HMO_CHECK(same_volume(m, r2));
+  }
+  // any kernel with Kernel_traits
+  {
+    typedef CGAL::Simple_cartesian<double>::Point_3 P2;
+    CGAL::Indexed_hex_mesh<P2> m2, r2;
+    for(const Point& p : m.points)
+      m2.points.push_back(P2(p.x(), p.y(), p.z()));
+    m2.hexahedra = m.hexahedra;
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("cartesian.vtk"), m2, Hex_mesh_fields(), &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("cartesian.vtk"), r2, &err));
+    HMO_CHECK(r2.hexahedra == m2.hexahedra && r2.points == m2.points);
+  }
+  HMO_CHECK(files_containing(".tmp") == 0);
+}
+
+// ----------------------------------------------------------------- validation
+
+void test_validation()
+{
+  typedef CGAL::Hex_mesh_defect D;
+  D d;
+  std::string problem;
+  const Mesh good = grid_mesh();
+  HMO_CHECK(CGAL::validate_hex_mesh(good, &problem));
+  HMO_CHECK(CGAL::validate_hex_mesh(good));
+
+  Mesh m = good;
+  m.hexahedra.clear();
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::NO_HEXAHEDRA);
+
+  m = good;
+  m.points[5] = Point(0., std::numeric_limits<double>::quiet_NaN(), 0.);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::NON_FINITE_COORDINATE && d.record == 5 && d.value == 1);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, &problem) && contains(problem, "vertices[5]") && contains(problem, "nan"));
+
+  m = good;
+  m.points[2] = Point(std::numeric_limits<double>::infinity(), 0., 0.);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::NON_FINITE_COORDINATE && d.record == 2);
+
+  m = good;
+  m.hexahedra[3][4] = 27;
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::INDEX_OUT_OF_RANGE && d.record == 3 && d.value == 27);
+  HMO_CHECK(d.what() == "hexahedra[3]: vertex index 27 out of range (mesh has 27 vertices)");
+  HMO_CHECK(contains(d.message(1, 1), "vertex index 28 out of range"));
+
+  m = good;
+  m.hexahedra[6][7] = m.hexahedra[6][2];
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::REPEATED_VERTEX && d.record == 6);
+  HMO_CHECK(d.positions[0] == 2 && d.positions[1] == 7);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, &problem) && contains(problem, "hexahedra[6]") && contains(problem, "repeated"));
+
+  m = grid_mesh(false);  // a third hexahedron on the face shared by hexahedra 0 and 1
+  m.points.push_back(Point(5, 5, 5));
+  m.points.push_back(Point(5, 6, 5));
+  m.points.push_back(Point(6, 6, 5));
+  m.points.push_back(Point(6, 5, 5));
+  {
+    const auto& h0 = m.hexahedra[0];  // its face {1, 2, 6, 5} is shared with hexahedron 1
+    m.hexahedra.push_back({{h0[1], 27, 28, h0[2], h0[5], 29, 30, h0[6]}});
+  }
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::NON_MANIFOLD_FACE && d.record == 8);
+  HMO_CHECK(d.other_records[0] == 0 && d.other_records[1] == 1);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, &problem) && contains(problem, "non-manifold face"));
+
+  m = good;
+  m.quadrilateral_references.pop_back();
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::REFERENCE_COUNT && d.section == D::QUADRILATERALS);
+
+  m = good;
+  m.corners.push_back(100);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::INDEX_OUT_OF_RANGE && d.section == D::CORNERS);
+
+  m = good;
+  m.ridges.push_back(3);
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.kind == D::INDEX_OUT_OF_RANGE && d.section == D::RIDGES);
+  HMO_CHECK(contains(d.what(), "edge index 3 out of range (mesh has 3 edges)"));
+
+  m = good;
+  m.triangles[0][1] = 99;
+  HMO_CHECK(!CGAL::validate_hex_mesh(m, d) && d.section == D::TRIANGLES && d.record == 0);
+}
+
+// ----------------------------------------------------------------- MEDIT input
+
+void test_medit_errors()
+{
+  const std::string cube_hex = "Hexahedra\n1\n1 2 3 4 5 6 7 8 0\n";
+
+  // accepted variants: count on the keyword line, comments, no End, odd case
+  {
+    const Mesh m = expect_read_text("ok1.mesh", "# a comment\n" + medit_header + "Vertices 8\n" +
+                                                  medit_cube_vertices.substr(11) + "# another\nhexahedra 1\n" +
+                                                  "1 2 3 4\n 5 6 7 8 4\n");
+    HMO_CHECK(m.hexahedra.size() == 1 && m.points.size() == 8 && m.hexahedron_references[0] == 4);
+  }
+  {
+    std::vector<std::string> warnings;
+    const Mesh m = expect_read_text("skip.mesh", medit_header + medit_cube_vertices + cube_hex +
+                                                   "Normals\n2\n0 0 1\n0 1 0\nTetrahedra 0\nEnd\n", &warnings);
+    HMO_CHECK(m.hexahedra.size() == 1);
+    HMO_CHECK(warnings.size() == 1 && contains(warnings[0], "skipped section Normals (2 records, line 16)"));
+  }
+
+  expect_read_failure(path("does_not_exist.mesh"), {"cannot open", "No such file or directory"});
+  expect_read_failure_text("empty.mesh", "", {"empty file"});
+  expect_read_failure_text("blank.mesh", "\n  \n# only a comment\n", {"empty file"});
+  expect_read_failure_text("truncated.mesh", medit_header + "Vertices\n8\n0 0 0 0\n1 0 0 0\n1 1 0 0\n",
+                           {"Vertices: expected 8 records, file ends after 3"});
+  expect_read_failure_text("truncated2.mesh", medit_header + "Vertices\n8\n0 0 0 0\n1 0 0 0\n1 1 0 0\n" + cube_hex,
+                           {"Vertices: expected 8 records, found only 3 before 'Hexahedra'", "line 8"}, 8);
+  expect_read_failure_text("truncated3.mesh", medit_header + medit_cube_vertices + "Hexahedra\n2\n1 2 3 4 5 6 7 8 0\n1 2",
+                           {"Hexahedra: expected 2 records, file ends after 1 and a partial record"});
+  expect_read_failure_text("token.mesh", medit_header + "Vertices\n8\n0 0 0 0\n1 abc 0 0\n",
+                           {"non-numeric token 'abc' in Vertices record 2 (line 6)"}, 6);
+  expect_read_failure_text("float_index.mesh", medit_header + medit_cube_vertices + "Hexahedra\n1\n1 2 3 4.0 5 6 7 8 0\n",
+                           {"'4.0'", "Hexahedra record 1 (line 15)", "integer"}, 15);
+  {
+    std::string v = medit_cube_vertices;
+    v.replace(v.find("1 1 0 0"), 7, "1 nan 0 0");
+    expect_read_failure_text("nan.mesh", medit_header + v + cube_hex,
+                             {"Vertices record 3 (line 7)", "coordinate y is nan", "not finite"}, 7);
+    v = medit_cube_vertices;
+    v.replace(v.find("0 1 1 0"), 7, "0 1 -inf 0");
+    expect_read_failure_text("inf.mesh", medit_header + v + cube_hex, {"Vertices record 8 (line 12)", "-inf"}, 12);
+    v = medit_cube_vertices;
+    v.replace(v.find("0 1 1 0"), 7, "0 1 1e400 0");
+    expect_read_failure_text("overflow.mesh", medit_header + v + cube_hex, {"'1e400' out of range", "line 12"}, 12);
+  }
+  expect_read_failure_text("range.mesh", medit_header + medit_cube_vertices + "Hexahedra\n2\n1 2 3 4 5 6 7 8 0\n"
+                                           "1 2 3 4 5 6 7 9 0\n",
+                           {"Hexahedra record 2 (line 16)", "vertex index 9 out of range (mesh has 8 vertices)"}, 16);
+  expect_read_failure_text("zero.mesh", medit_header + medit_cube_vertices + "Hexahedra\n1\n0 2 3 4 5 6 7 8 0\n",
+                           {"vertex index 0 out of range"}, 15);
+  expect_read_failure_text("negative.mesh", medit_header + medit_cube_vertices + "Hexahedra\n1\n1 2 3 -4 5 6 7 8 0\n",
+                           {"vertex index -4 out of range"}, 15);
+  expect_read_failure_text("repeated.mesh", medit_header + medit_cube_vertices + "Hexahedra\n1\n1 2 3 4 5 6 3 8 0\n",
+                           {"Hexahedra record 1 (line 15): vertex 3 repeated (positions 3 and 7 of 8)"}, 15);
+  expect_read_failure_text("tets.mesh", medit_header + medit_cube_vertices + cube_hex + "Tetrahedra\n2\n1 2 3 5 0\n2 3 4 6 0\nEnd\n",
+                           {"cells that are not hexahedra (section Tetrahedra, 2 records", "line 16"}, 16);
+  expect_read_failure_text("prisms.mesh", medit_header + medit_cube_vertices + "Prisms 1\n1 2 3 5 6 7 0\n" + cube_hex,
+                           {"section Prisms, 1 records"});
+  {
+    // three hexahedra on one face: the cube, and two above its top face
+    std::string v = "Vertices\n16\n";
+    for(int k = 0; k < 4; ++k)
+      v += "0 0 " + std::to_string(k) + " 0\n1 0 " + std::to_string(k) + " 0\n1 1 " + std::to_string(k) +
+           " 0\n0 1 " + std::to_string(k) + " 0\n";
+    expect_read_failure_text("nonmanifold.mesh", medit_header + v + "Hexahedra\n3\n1 2 3 4 5 6 7 8 0\n"
+                                                   "5 6 7 8 9 10 11 12 0\n5 6 7 8 13 14 15 16 0\n",
+                             {"Hexahedra record 3 (line 25)", "non-manifold face (5 6 7 8)", "also by records 1 and 2"}, 25);
+  }
+  expect_read_failure_text("unknown.mesh", medit_header + medit_cube_vertices + "Foo\n1\n1 2\n" + cube_hex,
+                           {"unknown keyword 'Foo' (line 13)"}, 13);
+  expect_read_failure_text("extra.mesh", medit_header + medit_cube_vertices + "0 0 0 0\n" + cube_hex,
+                           {"unexpected number '0' (line 13)"}, 13);
+  expect_read_failure_text("dim2.mesh", "MeshVersionFormatted 1\nDimension\n2\n", {"Dimension 2", "3-dimensional"}, 2);
+  expect_read_failure_text("twice.mesh", medit_header + medit_cube_vertices + medit_cube_vertices + cube_hex,
+                           {"second Vertices section (line 13; the first one is at line 3)"}, 13);
+  expect_read_failure_text("nohex.mesh", medit_header + medit_cube_vertices + "End\n", {"no Hexahedra section"});
+  expect_read_failure_text("zerohex.mesh", medit_header + medit_cube_vertices + "Hexahedra 0\nEnd\n",
+                           {"contains no hexahedra"});
+  expect_read_failure_text("corner.mesh", medit_header + medit_cube_vertices + cube_hex + "Corners\n2\n1\n9\n",
+                           {"Corners record 2 (line 19): vertex index 9 out of range"}, 19);
+  expect_read_failure_text("ridge.mesh", medit_header + medit_cube_vertices + cube_hex +
+                                           "Edges\n1\n1 2 0\nRidges\n1\n2\n",
+                           {"Ridges record 1 (line 21): edge index 2 out of range (mesh has 1 edges)"}, 21);
+  expect_read_failure_text("count.mesh", medit_header + "Vertices\n-3\n", {"expected a record count, found '-3'"}, 4);
+  expect_read_failure_text("binary.mesh", std::string("\x01\x00\x00\x00\x03\x00", 6), {"unexpected token '\\x01"});
+}
+
+// ----------------------------------------------------------------- VTK input
+
+std::string vtk_cells(const std::string& records, std::size_t n, std::size_t size, const std::string& types)
+{
+  return "CELLS " + std::to_string(n) + " " + std::to_string(size) + "\n" + records + "CELL_TYPES " +
+         std::to_string(n) + "\n" + types;
+}
+
+void test_vtk_errors()
+{
+  const std::string one_hex = vtk_cells("8 0 1 2 3 4 5 6 7\n", 1, 9, "12\n");
+
+  // values spanning lines, blank lines, CRLF, attribute data to skip
+  {
+    std::string text = "# vtk DataFile Version 2.0\r\ncube\r\nASCII\r\n\r\nDATASET UNSTRUCTURED_GRID\r\n"
+                       "FIELD FieldData 1\r\nTIME 1 1 double\r\n0.5\r\n"
+                       "POINTS 8 float\r\n0 0 0 1 0 0\r\n1 1\r\n0\r\n\r\n0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\r\n"
+                       "CELLS 1 9\r\n8\r\n0 1 2 3\r\n4 5 6 7\r\n\r\nCELL_TYPES 1\r\n12\r\n"
+                       "CELL_DATA 1\r\nSCALARS u float 1\r\nLOOKUP_TABLE default\r\n4.5\r\n"
+                       "VECTORS v double\r\n1 2 3\r\nFIELD f 2\r\na 2 1 int\r\n1 2\r\nb 1 1 double\r\n3\r\n"
+                       "POINT_DATA 8\r\nSCALARS w double\r\n1 2 3 4 5 6 7 8\r\n"
+                       "NORMALS n float\r\n" + std::string(24 * 2, ' ') + "0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1\r\n";
+    const Mesh m = expect_read_text("spanning.vtk", text);
+    HMO_CHECK(m.hexahedra.size() == 1 && m.points.size() == 8);
+    HMO_CHECK(m.points[2] == Point(1, 1, 0) && m.points[7] == Point(0, 1, 1));
+  }
+  // format 5.1: OFFSETS and CONNECTIVITY
+  {
+    const Mesh m = expect_read_text("v51.vtk", "# vtk DataFile Version 5.1\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
+                                                 vtk_cube_points + "CELLS 2 8\nOFFSETS vtktypeint64\n0 8\n"
+                                                 "CONNECTIVITY vtktypeint64\n0 1 2 3 4 5 6 7\nCELL_TYPES 1\n12\n");
+    HMO_CHECK(m.hexahedra.size() == 1 && m.hexahedra[0][7] == 7);
+  }
+  // 8-node cells labelled as tetrahedra: accepted with a warning
+  {
+    std::vector<std::string> warnings;
+    const Mesh m = expect_read_text("quirk.vtk", vtk_header + vtk_cube_points +
+                                                   vtk_cells("8 0 1 2 3 4 5 6 7\n", 1, 9, "10\n"), &warnings);
+    HMO_CHECK(m.hexahedra.size() == 1);
+    HMO_CHECK(warnings.size() == 1 &&
+              warnings[0] == "1 cells have 8 nodes but VTK cell type 10 (tetrahedron); read as hexahedra (type 12)");
+  }
+  // voxels: reordered
+  {
+    std::vector<std::string> warnings;
+    const Mesh m = expect_read_text("voxel.vtk", vtk_header + vtk_cube_points +
+                                                   vtk_cells("8 0 1 3 2 4 5 7 6\n", 1, 9, "11\n"), &warnings);
+    HMO_CHECK(m.hexahedra.size() == 1 && m.hexahedra[0] == (Mesh::Hexahedron{{0, 1, 2, 3, 4, 5, 6, 7}}));
+    HMO_CHECK(warnings.size() == 1 && contains(warnings[0], "voxels"));
+  }
+
+  expect_read_failure_text("empty.vtk", "", {"empty file"});
+  expect_read_failure_text("notvtk.vtk", "hello\nworld\n", {"not a legacy VTK file"}, 1);
+  expect_read_failure_text("format.vtk", "# vtk DataFile Version 3.0\nx\nUTF8\n", {"line 3 must be ASCII or BINARY"}, 3);
+  expect_read_failure_text("polydata.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n",
+                           {"DATASET POLYDATA (line 4) is not supported"}, 4);
+  expect_read_failure_text("tet.vtk", vtk_header + vtk_cube_points +
+                                        vtk_cells("8 0 1 2 3 4 5 6 7\n4 0 1 2 4\n", 2, 14, "12\n10\n"),
+                           {"cell 1 (line 16) has VTK cell type 10 (tetrahedron) with 4 nodes"}, 16);
+  expect_read_failure_text("wedge.vtk", vtk_header + vtk_cube_points + vtk_cells("6 0 1 2 4 5 6\n", 1, 7, "13\n"),
+                           {"cell 0 (line 15) has VTK cell type 13 (wedge) with 6 nodes"}, 15);
+  expect_read_failure_text("hex7.vtk", vtk_header + vtk_cube_points + vtk_cells("7 0 1 2 3 4 5 6\n", 1, 8, "12\n"),
+                           {"type 12 (hexahedron) with 7 nodes"}, 15);
+  expect_read_failure_text("truncated.vtk", vtk_header + "POINTS 8 double\n0 0 0\n1 0 0\n1 1",
+                           {"POINTS: expected 8 points, file ends after 2"});
+  expect_read_failure_text("truncated2.vtk", vtk_header + "POINTS 8 double\n0 0 0\n1 0 0\n" + one_hex,
+                           {"POINTS: expected 8 points, found only 2 before 'CELLS'", "line 8"}, 8);
+  expect_read_failure_text("token.vtk", vtk_header + "POINTS 8 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 x1\n" + one_hex,
+                           {"non-numeric token 'x1' in POINTS (line 13)"}, 13);
+  {
+    std::string p = vtk_cube_points;
+    p.replace(p.find("1 0 1"), 5, "1 0 NaN");
+    expect_read_failure_text("nan.vtk", vtk_header + p + one_hex, {"point 5 (line 11)", "coordinate z is nan"}, 11);
+  }
+  expect_read_failure_text("range.vtk", vtk_header + vtk_cube_points + vtk_cells("8 0 1 2 3 4 5 6 8\n", 1, 9, "12\n"),
+                           {"cell 0 (line 15): vertex index 8 out of range (mesh has 8 vertices)"}, 15);
+  expect_read_failure_text("negative.vtk", vtk_header + vtk_cube_points + vtk_cells("8 0 1 2 3 4 5 6 -1\n", 1, 9, "12\n"),
+                           {"vertex index -1 out of range"}, 15);
+  expect_read_failure_text("repeated.vtk", vtk_header + vtk_cube_points + vtk_cells("8 0 1 2 3 4 5 6 0\n", 1, 9, "12\n"),
+                           {"cell 0 (line 15): vertex 0 repeated (positions 1 and 8 of 8)"}, 15);
+  expect_read_failure_text("types.vtk", vtk_header + vtk_cube_points + vtk_cells("8 0 1 2 3 4 5 6 7\n", 1, 9, "") +
+                                          "CELL_DATA 1\n",
+                           {"CELL_TYPES: expected 1 cell types, found only 0 before 'CELL_DATA' (line 17)"}, 17);
+  expect_read_failure_text("types2.vtk", vtk_header + vtk_cube_points + "CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 2\n12 12\n",
+                           {"CELL_TYPES has 2 entries for 1 cells (line 16)"}, 16);
+  expect_read_failure_text("size.vtk", vtk_header + vtk_cube_points + vtk_cells("8 0 1 2 3 4 5 6 7\n", 1, 12, "12\n"),
+                           {"announces 12 numbers but the 1 cells hold 9"});
+  expect_read_failure_text("nocells.vtk", vtk_header + vtk_cube_points, {"no CELLS section"});
+  expect_read_failure_text("keyword.vtk", vtk_header + vtk_cube_points + one_hex + "BOGUS 3\n", {"unknown keyword 'BOGUS'"});
+  expect_read_failure_text("scalars.vtk", vtk_header + vtk_cube_points + one_hex + "POINT_DATA 8\nSCALARS s float\n1 2 3\n",
+                           {"POINT_DATA SCALARS: expected 8 values, file ends after 3"});
+}
+
+/// big-endian bytes of an integer or float value of `bytes` bytes
+template <class T>
+std::string big_endian(T v)
+{
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  std::string s;
+  for(std::size_t i = sizeof(T); i-- > 0;)  // this test assumes a little-endian machine
+    s += static_cast<char>(b[i]);
+  return s;
+}
+
+void test_vtk_binary_input()
+{
+  // format 5.1, BINARY: float points, 64-bit offsets and connectivity, METADATA
+  std::string text = "# vtk DataFile Version 5.1\nvtk output\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n";
+  const float cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0.1f, 1, 1}};
+  for(const auto& p : cube)
+    for(float c : p)
+      text += big_endian(c);
+  text += "\nMETADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.7\n\n";
+  text += "CELLS 2 8\nOFFSETS vtktypeint64\n" + big_endian<long long>(0) + big_endian<long long>(8) +
+          "\nCONNECTIVITY vtktypeint64\n";
+  for(long long i = 0; i < 8; ++i)
+    text += big_endian(i);
+  text += "\nCELL_TYPES 1\n" + big_endian<int>(12) + "\nCELL_DATA 1\nFIELD FieldData 1\nq 1 1 double\n" +
+          big_endian(2.5) + "\nMETADATA\nINFORMATION 0\n\n";
+  const Mesh m = expect_read_text("v51_binary.vtk", text);
+  HMO_CHECK(m.hexahedra.size() == 1 && m.hexahedra[0][7] == 7);
+  HMO_CHECK(m.points.size() == 8 && m.points[7] == Point(double(0.1f), 1, 1));
+
+  expect_read_failure_text("absurd.vtk", vtk_header + "POINTS 9223372036854775807 double\n0 0 0\n",
+                           {"POINTS (line 5): absurd number of values"}, 5);
+}
+
+void test_vtk_binary_errors()
+{
+  const Mesh m = grid_mesh(false);
+  Hex_mesh_io_error err;
+  HMO_CHECK(CGAL::IO::write_VTK(path("b.vtk"), m, grid_fields(m), &err, true));
+  const std::string good = read_text(path("b.vtk"));
+
+  // truncated in the middle of the points
+  const std::size_t points = good.find("POINTS 27 double\n") + 17;
+  expect_read_failure_text("b_truncated.vtk", good.substr(0, points + 100),
+                           {"POINTS: expected 27 points (648 bytes of binary data from byte " + std::to_string(points) +
+                            "), file ends 100 bytes later"});
+  // truncated in the attribute data
+  expect_read_failure_text("b_truncated2.vtk", good.substr(0, good.size() - 20), {"POINT_DATA SCALARS", "file ends"});
+
+  // a NaN coordinate: point 4, y
+  {
+    std::string bad = good;
+    const unsigned char nan_bytes[8] = {0x7f, 0xf8, 0, 0, 0, 0, 0, 0};
+    bad.replace(points + (3 * 4 + 1) * 8, 8, reinterpret_cast<const char*>(nan_bytes), 8);
+    expect_read_failure_text("b_nan.vtk", bad,
+                             {"point 4 (byte " + std::to_string(points + 3 * 4 * 8) + ")", "coordinate y is nan"});
+  }
+  // an index out of range in cell 2
+  {
+    std::string bad = good;
+    const std::size_t cells = bad.find("CELLS 8 72\n") + 11;
+    const unsigned char big[4] = {0, 0, 0, 99};
+    bad.replace(cells + (2 * 9 + 3) * 4, 4, reinterpret_cast<const char*>(big), 4);
+    expect_read_failure_text("b_range.vtk", bad,
+                             {"cell 2 (byte " + std::to_string(cells + 2 * 9 * 4) + ")", "vertex index 99 out of range"});
+  }
+}
+
+// ----------------------------------------------------------------- VTU input
+
+void test_vtu_errors()
+{
+  Hex_mesh_io_error err;
+  HMO_CHECK(CGAL::IO::write_VTU(path("v.vtu"), grid_mesh(), Hex_mesh_fields(), &err));
+  const std::string good = read_text(path("v.vtu"));
+
+  auto replaced = [&good](const std::string& from, const std::string& to) {
+    std::string s = good;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  expect_read_failure_text("binary.vtu", replaced("Name=\"connectivity\" format=\"ascii\"", "Name=\"connectivity\" format=\"binary\""),
+                           {"DataArray 'connectivity' (line ", "format=\"binary\"", "only format=\"ascii\""});
+  {
+    // points in appended raw data, which may hold any byte, '<' included
+    std::string s = good;
+    const std::size_t begin = s.find("<DataArray type=\"Float64\" NumberOfComponents=\"3\"");
+    const std::size_t end = s.find("</DataArray>", begin) + 12;
+    s.replace(begin, end - begin, "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/>");
+    s.replace(s.find("</VTKFile>"), 10, "<AppendedData encoding=\"raw\">_\x01<\x02</AppendedData></VTKFile>");
+    expect_read_failure_text("appended.vtu", s, {"Points DataArray (line 6) has format=\"appended\""}, 6);
+  }
+  expect_read_failure_text("compressed.vtu", replaced("byte_order=\"LittleEndian\"", "byte_order=\"LittleEndian\" compressor=\"vtkZLibDataCompressor\""),
+                           {"compressed data"});
+  expect_read_failure_text("polydata.vtu", replaced("type=\"UnstructuredGrid\"", "type=\"PolyData\""),
+                           {"type 'PolyData'", "only UnstructuredGrid"});
+  expect_read_failure_text("truncated.vtu", good.substr(0, good.size() / 2), {"not closed"});
+  expect_read_failure_text("token.vtu", replaced("\n12 12", "\n12 twelve"), {"non-numeric token 'twelve'"});
+  expect_read_failure_text("count.vtu", replaced("NumberOfPoints=\"27\"", "NumberOfPoints=\"28\""),
+                           {"Points DataArray (line 6): expected 28 points, the array ends after 27"});
+  expect_read_failure_text("range.vtu", replaced("NumberOfPoints=\"27\"", "NumberOfPoints=\"26\""),
+                           {"more than the 78 values"});
+  expect_read_failure_text("notxml.vtu", "hello", {"no <VTKFile> element"});
+  expect_read_failure_text("absurd.vtu", replaced("NumberOfPoints=\"27\"", "NumberOfPoints=\"9223372036854775807\""),
+                           {"absurd NumberOfPoints"});
+  {
+    // VTK itself writes <InformationKey> children after the values of a DataArray
+    std::string s = good;
+    const std::size_t points = s.find("<DataArray type=\"Float64\" NumberOfComponents=\"3\"");
+    s.insert(s.find("</DataArray>", points), "<InformationKey name=\"L2_NORM_RANGE\" location=\"vtkDataArray\" "
+                                             "length=\"2\">\n<Value index=\"0\">\n1.5\n</Value>\n</InformationKey>\n");
+    const Mesh m = expect_read_text("information.vtu", s);
+    HMO_CHECK(same_volume(m, grid_mesh()));
+  }
+  {
+    std::string s = replaced("\n12 12", "\n10 12");  // a hexahedron labelled as a tetrahedron
+    write_text(path("quirk.vtu"), s);
+    Mesh m;
+    std::vector<std::string> warnings;
+    HMO_CHECK(CGAL::IO::read_VTU(path("quirk.vtu"), m, &err, &warnings));
+    HMO_CHECK(warnings.size() == 1 && contains(warnings[0], "1 cells have 8 nodes but VTK cell type 10"));
+  }
+  {
+    // a repeated vertex: the message gives the line of the cell's connectivity
+    std::string s = good;
+    const std::size_t at = s.find("Name=\"connectivity\"");
+    const std::size_t first_record = s.find('\n', at) + 1;
+    const std::size_t line = 1 + std::count(s.begin(), s.begin() + first_record, '\n');
+    const std::size_t eol = s.find('\n', first_record);
+    s.replace(first_record, eol - first_record, "0 1 4 3 9 10 13 0");
+    expect_read_failure_text("repeated.vtu", s, {"cell 0 (line " + std::to_string(line) + "): vertex 0 repeated"}, line);
+  }
+}
+
+// ----------------------------------------------------------------- writing
+
+void test_write_failures()
+{
+  Hex_mesh_io_error err;
+  Mesh bad = grid_mesh();
+  bad.hexahedra[5][2] = 1000;
+  const char* names[] = {"bad.mesh", "bad.vtk", "bad_binary.vtk", "bad.vtu"};
+  for(int i = 0; i < 4; ++i)
+  {
+    const std::string file = path(names[i]);
+    bool ok = true;
+    switch(i)
+    {
+    case 0: ok = CGAL::IO::write_MEDIT(file, bad, &err); break;
+    case 1: ok = CGAL::IO::write_VTK(file, bad, Hex_mesh_fields(), &err); break;
+    case 2: ok = CGAL::IO::write_VTK(file, bad, Hex_mesh_fields(), &err, true); break;
+    default: ok = CGAL::IO::write_VTU(file, bad, Hex_mesh_fields(), &err); break;
+    }
+    HMO_CHECK(!ok);
+    HMO_CHECK(contains(err.what(), "refusing to write an invalid mesh: hexahedra[5]: vertex index 1000 out of range"));
+    HMO_CHECK(err.file == file && !hmo_test::file_exists(file));
+  }
+  // an existing file is left untouched by a failed write
+  const Mesh good = grid_mesh();
+  HMO_CHECK(CGAL::IO::write_hex_mesh(path("keep.vtk"), good, Hex_mesh_fields(), &err));
+  const std::string before = read_text(path("keep.vtk"));
+  HMO_CHECK(!CGAL::IO::write_hex_mesh(path("keep.vtk"), bad, Hex_mesh_fields(), &err));
+  HMO_CHECK(read_text(path("keep.vtk")) == before);
+  // and replaced by a successful one
+  Mesh moved = good;
+  moved.points[0] = Point(-1, -1, -1);
+  HMO_CHECK(CGAL::IO::write_hex_mesh(path("keep.vtk"), moved, Hex_mesh_fields(), &err));
+  HMO_CHECK(read_text(path("keep.vtk")) != before);
+
+  // a folder that does not exist
+  const std::string nowhere = path("no_such_dir/out.mesh");
+  HMO_CHECK(!CGAL::IO::write_MEDIT(nowhere, good, &err));
+  HMO_CHECK(contains(err.what(), "No such file or directory") && !hmo_test::file_exists(nowhere));
+  HMO_CHECK(!CGAL::IO::write_VTU(nowhere + ".vtu", good, Hex_mesh_fields(), &err));
+
+  // the target is a folder: the rename fails, the temporary goes away
+  std::filesystem::create_directory(path("a_folder.vtk"));
+  HMO_CHECK(!CGAL::IO::write_VTK(path("a_folder.vtk"), good, Hex_mesh_fields(), &err));
+  HMO_CHECK(contains(err.what(), "cannot replace the target"));
+
+  // fields of the wrong size, empty names
+  Hex_mesh_fields fields;
+  fields.cell_scalars.push_back({"scaled_jacobian", std::vector<double>(3, 1.)});
+  HMO_CHECK(!CGAL::IO::write_VTU(path("fields.vtu"), good, fields, &err));
+  HMO_CHECK(contains(err.message, "cell field 'scaled_jacobian' has 3 values for 8 hexahedra"));
+  HMO_CHECK(!hmo_test::file_exists(path("fields.vtu")));
+  fields.cell_scalars.clear();
+  fields.point_scalars.push_back({"", std::vector<double>(27, 1.)});
+  HMO_CHECK(!CGAL::IO::write_VTK(path("fields.vtk"), good, fields, &err));
+  HMO_CHECK(contains(err.message, "point field with an empty name") && !hmo_test::file_exists(path("fields.vtk")));
+
+  // extensions
+  HMO_CHECK(!CGAL::IO::write_hex_mesh(path("out.obj"), good, Hex_mesh_fields(), &err));
+  HMO_CHECK(contains(err.message, "unknown file extension '.obj'") && !hmo_test::file_exists(path("out.obj")));
+  HMO_CHECK(!CGAL::IO::write_hex_mesh(path("noextension"), good, Hex_mesh_fields(), &err));
+  HMO_CHECK(contains(err.message, "no file extension"));
+  write_text(path("x.obj"), "v 0 0 0\n");
+  expect_read_failure(path("x.obj"), {"unknown file extension '.obj'"});
+  expect_read_failure(path("x.meshb"), {".meshb) are not supported"});
+
+  HMO_CHECK(files_containing(".tmp") == 0);
+}
+
+// ----------------------------------------------------------------- shared data
+
+void test_shared_data()
+{
+  const std::string dir = hmo_test::shared_data_dir();
+  if(dir.empty())
+    return;
+  struct Expected { const char* file; std::size_t hexes; };
+  const Expected meshes[] = {
+    {"edge-cone/block_in.mesh", 2520}, {"edge-cone/bunny_in.mesh", 37734}, {"edge-cone/bust_in.mesh", 5258},
+    {"edge-cone/cap_in.mesh", 4420}, {"edge-cone/hanger_stresstest_in.mesh", 4539},
+    {"edge-cone/impeller_stresstest_in.mesh", 11174},
+    {"edge-cone/published/block_edgecone.mesh", 2520}, {"edge-cone/published/bunny_edgecone.mesh", 37734},
+    {"edge-cone/published/bust_edgecone.mesh", 5258}, {"edge-cone/published/cap_edgecone.mesh", 4420},
+    {"edge-cone/published/hanger_stresstest_edgecone.mesh", 4539},
+    {"edge-cone/published/impeller_stresstest_edgecone.mesh", 11174},
+    {"inverted/bunny_dualsheet.vtk", 2832}, {"inverted/hex_torus.vtk", 7380},
+    {"amips/rockerarm_li12.vtk", 10600}, {"amips/fertility_gregson11.mesh", 19870},
+    {"low-quality/kitten_with_bifur_2.mesh", 2928}, {"low-quality/cat_2.mesh", 2604},
+    {"low-quality/Dolphin_2.mesh", 4788},
+    {"stress-base/fandisk.vtk", 357}, {"stress-base/kitty.vtk", 7083}, {"stress-base/hanger.vtk", 4539}
+  };
+  for(const Expected& e : meshes)
+  {
+    Mesh m;
+    Hex_mesh_io_error err;
+    std::vector<std::string> warnings;
+    const std::string file = dir + "/" + e.file;
+    const auto start = std::chrono::steady_clock::now();
+    const bool ok = CGAL::IO::read_hex_mesh(file, m, &err, &warnings);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if(!ok)
+      std::cerr << err.what() << std::endl;
+    HMO_CHECK(ok);
+    HMO_CHECK(m.hexahedra.size() == e.hexes);
+    std::cout << "  " << e.file << ": " << m.hexahedra.size() << " hexes, " << m.points.size() << " vertices, "
+              << m.quadrilaterals.size() << " quads, read in " << ms << " ms" << std::endl;
+    for(const std::string& w : warnings)
+      std::cout << "    warning: " << w << std::endl;
+    if(std::string(e.file) == "inverted/hex_torus.vtk")
+    {
+      HMO_CHECK(warnings.size() == 1 &&
+                warnings[0] == "7380 cells have 8 nodes but VTK cell type 10 (tetrahedron); read as hexahedra (type 12)");
+    }
+    else
+      HMO_CHECK(warnings.empty());
+    if(std::string(e.file) == "edge-cone/bunny_in.mesh")
+    {
+      HMO_CHECK(ms < 1000.);  // "well under a second": about 50 ms in a Release build
+      // a real mesh with boundary quads through MEDIT and back, and through binary VTK
+      HMO_CHECK(CGAL::IO::write_MEDIT(path("bunny.mesh"), m, &err));
+      Mesh r;
+      HMO_CHECK(CGAL::IO::read_MEDIT(path("bunny.mesh"), r, &err));
+      HMO_CHECK(same_everything(m, r));
+      HMO_CHECK(CGAL::IO::write_VTK(path("bunny.vtk"), m, Hex_mesh_fields(), &err, true));
+      Mesh b;
+      HMO_CHECK(CGAL::IO::read_VTK(path("bunny.vtk"), b, &err));
+      HMO_CHECK(same_volume(m, b));
+    }
+  }
+}
+
+} // namespace
+
+int main(int, char** argv)
+{
+  char templ[] = "/tmp/hmo_io_XXXXXX";
+  if(::mkdtemp(templ) == nullptr)
+  {
+    std::cerr << "cannot create a temporary folder" << std::endl;
+    return EXIT_FAILURE;
+  }
+  g_dir = templ;
+
+  test_round_trips();
+  test_validation();
+  test_medit_errors();
+  test_vtk_errors();
+  test_vtk_binary_input();
+  test_vtk_binary_errors();
+  test_vtu_errors();
+  test_write_failures();
+  test_shared_data();
+
+  std::error_code ec;
+  std::filesystem::remove_all(g_dir, ec);
+  return hmo_test::report(argv[0]);
+}
