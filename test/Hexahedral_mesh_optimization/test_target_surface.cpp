@@ -1,0 +1,597 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Boundary extraction, target surface (Section 3.1: smoothing, projection,
+// feature classification, per-iteration constraints) and surface error.
+
+#include "test_util.h"
+
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+#include <CGAL/hex_mesh_surface_error.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Surface;
+namespace HMO = CGAL::Hexahedral_mesh_optimization::internal;
+using HMO::Vec3;
+using HMO::Vertex_class;
+using HMO::operator+;
+using HMO::operator-;
+using HMO::operator*;
+
+// ------------------------------------------------------------ generators
+
+// nx × ny × nz grid of unit-spaced... hexes spanning [0,sx]×[0,sy]×[0,sz], MEDIT order
+HMO::Hex_mesh_arrays grid(std::size_t nx, std::size_t ny, std::size_t nz,
+                          double sx = 1., double sy = 1., double sz = 1.)
+{
+  HMO::Hex_mesh_arrays m;
+  auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  for(std::size_t k = 0; k <= nz; ++k)
+    for(std::size_t j = 0; j <= ny; ++j)
+      for(std::size_t i = 0; i <= nx; ++i)
+        m.points.push_back(Vec3{sx * double(i) / double(nx), sy * double(j) / double(ny), sz * double(k) / double(nz)});
+  for(std::size_t k = 0; k < nz; ++k)
+    for(std::size_t j = 0; j < ny; ++j)
+      for(std::size_t i = 0; i < nx; ++i)
+        m.hexes.push_back(HMO::Hex{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                   id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return m;
+}
+
+// a grid whose square cross-section [-1,1]² is mapped onto the unit disk
+// ring by ring (uniform angle along each square ring): a closed cylinder
+HMO::Hex_mesh_arrays cylinder(std::size_t n, std::size_t nz, double height)
+{
+  HMO::Hex_mesh_arrays m = grid(n, n, nz, 2., 2., height);
+  for(Vec3& p : m.points)
+  {
+    const double x = p[0] - 1., y = p[1] - 1.;
+    const double r = (std::max)(std::abs(x), std::abs(y));
+    if(r < 1e-12)
+    {
+      p[0] = p[1] = 0.;
+      continue;
+    }
+    // arc-length parameter along the square ring of half-side r, in [0, 8r)
+    double s;
+    if(x >= r - 1e-12)        s = y + r;             // right side, y from -r to r
+    else if(y >= r - 1e-12)   s = 2 * r + (r - x);   // top side
+    else if(x <= -r + 1e-12)  s = 4 * r + (r - y);   // left side
+    else                      s = 6 * r + (x + r);   // bottom side
+    const double a = s / (8. * r) * 2. * CGAL_PI - CGAL_PI / 4.;
+    p[0] = r * std::cos(a);
+    p[1] = r * std::sin(a);
+  }
+  return m;
+}
+
+CGAL::Indexed_hex_mesh<Point> to_indexed(const HMO::Hex_mesh_arrays& a)
+{
+  CGAL::Indexed_hex_mesh<Point> m;
+  for(const Vec3& p : a.points)
+    m.points.push_back(Point(p[0], p[1], p[2]));
+  m.hexahedra.assign(a.hexes.begin(), a.hexes.end());
+  return m;
+}
+
+double distance_to_box_surface(const Vec3& p, const Vec3& lo, const Vec3& hi)
+{
+  bool inside = true;
+  double out2 = 0., in = 1e300;
+  for(int d = 0; d < 3; ++d)
+  {
+    if(p[d] < lo[d]) { inside = false; out2 += (lo[d] - p[d]) * (lo[d] - p[d]); }
+    else if(p[d] > hi[d]) { inside = false; out2 += (p[d] - hi[d]) * (p[d] - hi[d]); }
+    else in = (std::min)(in, (std::min)(p[d] - lo[d], hi[d] - p[d]));
+  }
+  return inside ? in : std::sqrt(out2);
+}
+
+int on_box_planes(const Vec3& p, const Vec3& lo, const Vec3& hi, double tol)
+{
+  int c = 0;
+  for(int d = 0; d < 3; ++d)
+    if(std::abs(p[d] - lo[d]) < tol || std::abs(p[d] - hi[d]) < tol)
+      ++c;
+  return c;
+}
+
+// ------------------------------------------------------------ tests
+
+void test_boundary_extraction()
+{
+  for(std::size_t n : {1, 2, 5})
+  {
+    const HMO::Hex_mesh_arrays m = grid(n, n, n);
+    CGAL::Real_timer t;
+    t.start();
+    const HMO::Hex_mesh_boundary b = HMO::extract_boundary(m);
+    HMO_CHECK(b.number_of_quads() == 6 * n * n);
+    HMO_CHECK(b.number_of_vertices() == (n + 1) * (n + 1) * (n + 1) - (n - 1) * (n - 1) * (n - 1));
+    HMO_CHECK(b.number_of_edges() == 12 * n * n);
+    HMO_CHECK(b.number_of_overshared_faces == 0);
+    HMO_CHECK(std::count(b.edge_is_manifold.begin(), b.edge_is_manifold.end(), false) == 0);
+    // vertex map both ways
+    bool map_ok = true;
+    for(std::size_t i = 0; i < b.vertices.size(); ++i)
+      map_ok = map_ok && b.boundary_index[b.vertices[i]] == i;
+    std::size_t interior = 0;
+    for(std::size_t v = 0; v < m.points.size(); ++v)
+      if(!b.is_boundary_vertex(v))
+        ++interior;
+    HMO_CHECK(map_ok);
+    HMO_CHECK(interior == (n - 1) * (n - 1) * (n - 1));
+    // every quad has 4 neighbours, symmetric; quads point outward
+    bool adj_ok = true, outward = true;
+    const Vec3 c{0.5, 0.5, 0.5};
+    for(std::size_t q = 0; q < b.quads.size(); ++q)
+    {
+      for(int i = 0; i < 4; ++i)
+      {
+        const std::size_t r = b.quad_neighbors[q][i];
+        adj_ok = adj_ok && r != b.npos &&
+                 std::count(b.quad_neighbors[r].begin(), b.quad_neighbors[r].end(), q) >= 1;
+      }
+      const auto& Q = b.quads[q];
+      const Vec3 centre = 0.25 * (((m.points[Q[0]] + m.points[Q[1]]) + m.points[Q[2]]) + m.points[Q[3]]);
+      outward = outward && HMO::dot(HMO::quad_normal(m.points, Q), centre - c) > 0.;
+    }
+    HMO_CHECK(adj_ok);
+    HMO_CHECK(outward);
+    // CSR: corners of the grid have 3 quads, 3 edges
+    const auto qr = b.quads_of(b.boundary_index[0]);
+    const auto er = b.edges_of(b.boundary_index[0]);
+    HMO_CHECK(qr.second - qr.first == 3);
+    HMO_CHECK(er.second - er.first == 3);
+    // triangulated boundary: a closed surface of 12 n² triangles
+    Surface s;
+    HMO::boundary_to_surface_mesh(b, m.points, s);
+    HMO_CHECK(s.number_of_faces() == 12 * n * n);
+    HMO_CHECK(CGAL::is_closed(s));
+    if(n == 5)
+      std::cout << "boundary of a 5x5x5 grid: " << t.time() << " s" << std::endl;
+  }
+
+  // two hexes sharing only an edge: 2 non-manifold... 1 edge shared by 4 quads
+  {
+    HMO::Hex_mesh_arrays m = grid(2, 2, 1);
+    m.hexes = {m.hexes[0], m.hexes[3]}; // diagonal cells (0,0) and (1,1) share the edge at x=y=0.5
+    const HMO::Hex_mesh_boundary b = HMO::extract_boundary(m);
+    HMO_CHECK(b.number_of_quads() == 12);
+    HMO_CHECK(std::count(b.edge_is_manifold.begin(), b.edge_is_manifold.end(), false) == 1);
+  }
+
+  // a 40k-hex grid is fast
+  {
+    const HMO::Hex_mesh_arrays m = grid(34, 34, 34);
+    CGAL::Real_timer t;
+    t.start();
+    const HMO::Hex_mesh_boundary b = HMO::extract_boundary(m);
+    std::cout << "boundary of a 34^3 grid (" << m.hexes.size() << " hexes): " << t.time() << " s" << std::endl;
+    HMO_CHECK(b.number_of_quads() == 6 * 34 * 34);
+  }
+}
+
+void check_box_classes(const HMO::Target_surface& ts, std::size_t nx, std::size_t ny, std::size_t nz,
+                       const char* what)
+{
+  const std::size_t corners = ts.number_of_vertices_of_class(Vertex_class::corner);
+  const std::size_t sharp = ts.number_of_vertices_of_class(Vertex_class::sharp);
+  const std::size_t regular = ts.number_of_vertices_of_class(Vertex_class::regular);
+  const std::size_t nb = ts.boundary().number_of_vertices();
+  std::cout << what << ": " << ts.feature_lines().size() << " feature lines, " << corners << " corners, "
+            << sharp << " sharp, " << regular << " regular" << std::endl;
+  HMO_CHECK(ts.feature_lines().size() == 12);
+  HMO_CHECK(corners == 8);
+  HMO_CHECK(sharp == 4 * ((nx - 1) + (ny - 1) + (nz - 1)));
+  HMO_CHECK(regular == nb - 8 - sharp);
+  for(const auto& l : ts.feature_lines())
+    HMO_CHECK(!l.closed);
+}
+
+void test_features()
+{
+  // a box grid: 12 feature lines, 8 corners, the rest regular
+  {
+    const std::size_t nx = 3, ny = 4, nz = 5;
+    const HMO::Hex_mesh_arrays m = grid(nx, ny, nz, 3., 4., 5.);
+    HMO::Target_surface ts(m);
+    check_box_classes(ts, nx, ny, nz, "box 3x4x5");
+    // a uniform grid is a fixed point of the smoothing
+    double move = 0.;
+    for(std::size_t i = 0; i < ts.boundary().vertices.size(); ++i)
+      move = (std::max)(move, HMO::norm(ts.target_positions()[i] - m.points[ts.boundary().vertices[i]]));
+    HMO_CHECK(move < 1e-9);
+    HMO_CHECK_CLOSE(ts.mean_boundary_edge_length(), 1., 1e-12);
+    // the corners are where they should be
+    for(std::size_t v = 0; v < m.points.size(); ++v)
+      if(ts.vertex_class(v) == Vertex_class::corner)
+        HMO_CHECK(on_box_planes(m.points[v], Vec3{0, 0, 0}, Vec3{3, 4, 5}, 1e-12) == 3);
+      else if(ts.vertex_class(v) == Vertex_class::sharp)
+        HMO_CHECK(on_box_planes(m.points[v], Vec3{0, 0, 0}, Vec3{3, 4, 5}, 1e-12) == 2);
+  }
+
+  // the same box with its boundary vertices shuffled within their faces and
+  // the interior tangled: smoothing + projection keep 12 lines and 8 corners
+  {
+    const std::size_t n = 6;
+    HMO::Hex_mesh_arrays m = grid(n, n, n);
+    const HMO::Hex_mesh_arrays ref = m;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.3 / double(n), 0.3 / double(n));
+    for(Vec3& p : m.points)
+    {
+      const int planes = on_box_planes(p, Vec3{0, 0, 0}, Vec3{1, 1, 1}, 1e-12);
+      if(planes == 3)
+        continue;
+      for(int d = 0; d < 3; ++d)
+      {
+        const bool fixed = std::abs(p[d]) < 1e-12 || std::abs(p[d] - 1.) < 1e-12;
+        if(!fixed || planes == 0)
+          p[d] += (planes == 0 ? 3. : 1.) * u(rng);
+      }
+    }
+    HMO::Target_surface ts(m);
+    check_box_classes(ts, n, n, n, "shuffled 6x6x6 box");
+    double off = 0.;
+    for(const Vec3& p : ts.target_positions())
+      off = (std::max)(off, distance_to_box_surface(p, Vec3{0, 0, 0}, Vec3{1, 1, 1}));
+    HMO_CHECK(off < 1e-9);
+  }
+
+  // a closed cylinder: the two rims are closed feature lines, no corner
+  {
+    const HMO::Hex_mesh_arrays m = cylinder(8, 6, 2.);
+    HMO::Target_surface ts(m);
+    std::size_t closed = 0;
+    for(const auto& l : ts.feature_lines())
+      closed += l.closed ? 1 : 0;
+    std::cout << "cylinder: " << ts.feature_lines().size() << " feature lines (" << closed << " closed), "
+              << ts.number_of_vertices_of_class(Vertex_class::corner) << " corners, "
+              << ts.number_of_vertices_of_class(Vertex_class::sharp) << " sharp" << std::endl;
+    HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::corner) == 0);
+    HMO_CHECK(ts.feature_lines().size() == 2);
+    HMO_CHECK(closed == 2);
+    HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::sharp) == 2 * 4 * 8);
+  }
+
+  // a smooth, coarse surface with θ = 165°: the sphere-like blob made by
+  // pushing the boundary of a grid onto a sphere has no short fragments left
+  {
+    HMO::Hex_mesh_arrays m = grid(8, 8, 8, 2., 2., 2.);
+    for(Vec3& p : m.points)
+    {
+      const Vec3 q = p - Vec3{1, 1, 1};
+      const double linf = (std::max)(std::abs(q[0]), (std::max)(std::abs(q[1]), std::abs(q[2])));
+      const double l2 = HMO::norm(q);
+      if(l2 > 0.)
+        p = Vec3{1, 1, 1} + (linf / l2) * q;
+    }
+    HMO::Target_surface ts(m);
+    std::cout << "sphere from a cube: " << ts.number_of_vertices_of_class(Vertex_class::corner)
+              << " corners, " << ts.number_of_vertices_of_class(Vertex_class::sharp) << " sharp" << std::endl;
+    // no short dangling or isolated fragment is left
+    const HMO::Hex_mesh_boundary& b = ts.boundary();
+    auto sharp_degree = [&](std::size_t bi) {
+      std::size_t d = 0;
+      const auto er = b.edges_of(bi);
+      for(const std::size_t* e = er.first; e != er.second; ++e)
+        d += ts.sharp_edges()[*e] ? 1 : 0;
+      return d;
+    };
+    bool fragments_ok = true;
+    for(const auto& l : ts.feature_lines())
+      if(l.edges.size() < ts.parameters().min_feature_edges)
+        fragments_ok = fragments_ok && !l.closed && sharp_degree(l.vertices.front()) > 2 &&
+                       sharp_degree(l.vertices.back()) > 2;
+    HMO_CHECK(fragments_ok);
+  }
+}
+
+void test_constraints()
+{
+  const std::size_t n = 4;
+  const HMO::Hex_mesh_arrays m = grid(n, n, n);
+  const Vec3 lo{0, 0, 0}, hi{1, 1, 1};
+  HMO::Target_surface ts(m);
+
+  HMO::Hex_mesh_arrays p = m;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.1 / double(n), 0.1 / double(n));
+  for(Vec3& x : p.points)
+    for(int d = 0; d < 3; ++d)
+      x[d] += u(rng);
+
+  std::vector<HMO::Boundary_constraint> bc;
+  ts.update_constraints(p.points, bc);
+  HMO_CHECK(bc.size() == m.points.size());
+  std::size_t n_reg = 0, n_sharp = 0, n_corner = 0, n_int = 0;
+  bool regular_ok = true, sharp_ok = true, corner_ok = true, unit_ok = true, interior_ok = true;
+  for(std::size_t v = 0; v < bc.size(); ++v)
+  {
+    const HMO::Boundary_constraint& c = bc[v];
+    switch(c.type)
+    {
+    case Vertex_class::interior:
+      ++n_int;
+      interior_ok = interior_ok && !ts.boundary().is_boundary_vertex(v);
+      break;
+    case Vertex_class::regular:
+    {
+      ++n_reg;
+      regular_ok = regular_ok && distance_to_box_surface(c.anchor, lo, hi) < 1e-12;
+      unit_ok = unit_ok && std::abs(HMO::norm(c.direction) - 1.) < 1e-12;
+      // the outward axis normal of the face the anchor is on
+      const Vec3 centre{0.5, 0.5, 0.5};
+      const Vec3 d = c.anchor - centre;
+      int axis = 0;
+      for(int k = 1; k < 3; ++k)
+        if(std::abs(d[k]) > std::abs(d[axis]))
+          axis = k;
+      regular_ok = regular_ok && std::abs(c.direction[axis] - (d[axis] > 0 ? 1. : -1.)) < 1e-9;
+      // the anchor is the closest point: v − anchor is along the normal
+      const Vec3 r = p.points[v] - c.anchor;
+      regular_ok = regular_ok && HMO::norm(HMO::cross(r, c.direction)) < 1e-9;
+      break;
+    }
+    case Vertex_class::sharp:
+    {
+      ++n_sharp;
+      sharp_ok = sharp_ok && on_box_planes(c.anchor, lo, hi, 1e-12) >= 2;
+      unit_ok = unit_ok && std::abs(HMO::norm(c.direction) - 1.) < 1e-12;
+      // the tangent is the free axis of the box edge
+      int free_axis = -1;
+      for(int k = 0; k < 3; ++k)
+        if(!(std::abs(c.anchor[k] - lo[k]) < 1e-12 || std::abs(c.anchor[k] - hi[k]) < 1e-12))
+          free_axis = k;
+      sharp_ok = sharp_ok && free_axis >= 0 && std::abs(std::abs(c.direction[free_axis]) - 1.) < 1e-12;
+      break;
+    }
+    case Vertex_class::corner:
+      ++n_corner;
+      corner_ok = corner_ok && HMO::norm(c.anchor - m.points[v]) < 1e-12;
+      break;
+    }
+  }
+  HMO_CHECK(n_corner == 8);
+  HMO_CHECK(n_sharp == 12 * (n - 1));
+  HMO_CHECK(n_reg == 6 * (n - 1) * (n - 1));
+  HMO_CHECK(n_int == (n - 1) * (n - 1) * (n - 1));
+  HMO_CHECK(regular_ok);
+  HMO_CHECK(sharp_ok);
+  HMO_CHECK(corner_ok);
+  HMO_CHECK(unit_ok);
+  HMO_CHECK(interior_ok);
+
+  // project_to_target puts the boundary back on the box, leaves the interior
+  HMO::Hex_mesh_arrays q = p;
+  ts.project_to_target(q.points);
+  double off = 0.;
+  bool interior_kept = true;
+  for(std::size_t v = 0; v < q.points.size(); ++v)
+    if(ts.boundary().is_boundary_vertex(v))
+      off = (std::max)(off, distance_to_box_surface(q.points[v], lo, hi));
+    else
+      interior_kept = interior_kept && q.points[v] == p.points[v];
+  HMO_CHECK(off < 1e-12);
+  HMO_CHECK(interior_kept);
+
+  // target_points: the boundary at Ω_t (here the input grid)
+  std::vector<Vec3> tp = p.points;
+  ts.target_points(tp);
+  bool tp_ok = true;
+  for(std::size_t v : ts.boundary().vertices)
+    tp_ok = tp_ok && HMO::norm(tp[v] - m.points[v]) < 1e-12;
+  HMO_CHECK(tp_ok);
+
+  // a separate reference (the box surface, 2 triangles a face) for a mesh
+  // whose boundary is off it: Ω_t lands on the reference
+  {
+    std::vector<Vec3> rp;
+    for(int i = 0; i < 8; ++i)
+      rp.push_back(Vec3{double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+    // faces of the unit cube, any orientation (the class orients normals itself)
+    const std::vector<HMO::Tri> rt = {{0, 1, 3}, {0, 3, 2}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                      {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 3, 7}, {1, 7, 5}};
+    HMO::Target_surface ts2(p, rp, rt);
+    double off2 = 0.;
+    for(const Vec3& x : ts2.target_positions())
+      off2 = (std::max)(off2, distance_to_box_surface(x, lo, hi));
+    HMO_CHECK(off2 < 1e-12);
+    HMO_CHECK(ts2.number_of_vertices_of_class(Vertex_class::corner) == 8);
+    std::vector<HMO::Boundary_constraint> bc2;
+    ts2.update_constraints(p.points, bc2);
+    bool normals_out = true;
+    for(std::size_t v = 0; v < bc2.size(); ++v)
+      if(bc2[v].type == Vertex_class::regular)
+        normals_out = normals_out && HMO::dot(bc2[v].direction, bc2[v].anchor - Vec3{0.5, 0.5, 0.5}) > 0.;
+    HMO_CHECK(normals_out);
+  }
+
+  // transform: p ← 2p + t moves the anchors alike
+  {
+    HMO::Target_surface ts3(m);
+    const Vec3 t{1., -2., 3.};
+    ts3.transform(2., t);
+    std::vector<Vec3> moved = p.points;
+    for(Vec3& x : moved)
+      x = 2. * x + t;
+    std::vector<HMO::Boundary_constraint> bc3;
+    ts3.update_constraints(moved, bc3);
+    double err = 0.;
+    for(std::size_t v = 0; v < bc3.size(); ++v)
+      if(bc3[v].type != Vertex_class::interior)
+        err = (std::max)(err, HMO::norm(bc3[v].anchor - (2. * bc[v].anchor + t)));
+    HMO_CHECK(err < 1e-9);
+    HMO_CHECK_CLOSE(ts3.mean_boundary_edge_length(), 2. * ts.mean_boundary_edge_length(), 1e-12);
+  }
+}
+
+void write_cube_off(const std::string& fname, double lo, double hi)
+{
+  std::ofstream out(fname);
+  out << "OFF\n8 6 0\n";
+  for(int i = 0; i < 8; ++i)
+    out << ((i & 1) ? hi : lo) << " " << (((i >> 1) & 1) ? hi : lo) << " " << (((i >> 2) & 1) ? hi : lo) << "\n";
+  out << "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+}
+
+void test_surface_error()
+{
+  // (parallel faces at one distance are the worst case of the bounded-error
+  // Hausdorff distance, which cannot prune: keep the grid small)
+  const HMO::Hex_mesh_arrays a = grid(2, 2, 2);
+  const CGAL::Indexed_hex_mesh<Point> mesh = to_indexed(a);
+
+  // against itself
+  CGAL::Real_timer t;
+  t.start();
+  const double self = CGAL::hex_mesh_surface_error(mesh, mesh);
+  HMO_CHECK(self < 1e-12);
+
+  // against a copy scaled by s about the centre: the Hausdorff distance is
+  // realised at a corner, (s−1)/2·√3, and the reference diagonal is s·√3
+  const double s = 1.1;
+  HMO::Hex_mesh_arrays b = a;
+  for(Vec3& p : b.points)
+    p = Vec3{0.5, 0.5, 0.5} + s * (p - Vec3{0.5, 0.5, 0.5});
+  const CGAL::Indexed_hex_mesh<Point> scaled = to_indexed(b);
+  const double expected = (s - 1.) / (2. * s);
+  const double e = CGAL::hex_mesh_surface_error(mesh, scaled);
+  std::cout << "surface error vs scaled copy: " << e << " (analytic " << expected << ")" << std::endl;
+  HMO_CHECK_CLOSE(e, expected, 2e-4);
+  const CGAL::Hex_mesh_surface_distance d = CGAL::hex_mesh_surface_distance(mesh, scaled);
+  HMO_CHECK_CLOSE(d.mesh_to_reference, 0.05, 2e-4 * d.reference_diagonal);
+  HMO_CHECK_CLOSE(d.reference_to_mesh, 0.05 * std::sqrt(3.), 2e-4 * d.reference_diagonal);
+  HMO_CHECK_CLOSE(d.reference_diagonal, s * std::sqrt(3.), 1e-12);
+  HMO_CHECK(d.metro_diagonal > d.reference_diagonal);
+
+  // the same against a triangle-mesh reference read from a (quad) OFF file
+  const std::string off = "test_target_surface_cube.off";
+  write_cube_off(off, 0.5 - 0.5 * s, 0.5 + 0.5 * s);
+  Surface ref;
+  std::string err;
+  HMO_CHECK(CGAL::IO::read_reference_surface(off, ref, &err));
+  HMO_CHECK(CGAL::is_triangle_mesh(ref));
+  HMO_CHECK(ref.number_of_faces() == 12);
+  HMO_CHECK_CLOSE(CGAL::hex_mesh_surface_error(mesh, ref), expected, 2e-4);
+  // 0 up to the error bound of the bounded-error Hausdorff distance (1e-4)
+  HMO_CHECK_CLOSE(CGAL::hex_mesh_surface_error(scaled, ref), 0., 2e-4);
+  std::remove(off.c_str());
+  std::cout << "surface error checks: " << t.time() << " s" << std::endl;
+
+  // reading errors are reported
+  Surface bad;
+  err.clear();
+  HMO_CHECK(!CGAL::IO::read_reference_surface("no_such_file.obj", bad, &err));
+  HMO_CHECK(!err.empty());
+  std::cout << "missing file: " << err << std::endl;
+  const std::string empty = "test_target_surface_empty.off";
+  {
+    std::ofstream out(empty);
+    out << "OFF\n0 0 0\n";
+  }
+  err.clear();
+  HMO_CHECK(!CGAL::IO::read_reference_surface(empty, bad, &err));
+  HMO_CHECK(!err.empty());
+  std::cout << "empty file: " << err << std::endl;
+  std::remove(empty.c_str());
+  const std::string unknown = "test_target_surface.xyz";
+  {
+    std::ofstream out(unknown);
+    out << "0 0 0\n";
+  }
+  err.clear();
+  HMO_CHECK(!CGAL::IO::read_reference_surface(unknown, bad, &err));
+  HMO_CHECK(!err.empty());
+  std::remove(unknown.c_str());
+}
+
+void test_shared_data()
+{
+  const std::string dir = hmo_test::shared_data_dir();
+  if(dir.empty())
+    return;
+  const std::string hexfile = dir + "/inverted/bunny_dualsheet.vtk";
+  const std::string objfile = dir + "/surfaces/bunny_reference.obj";
+  if(!hmo_test::file_exists(hexfile) || !hmo_test::file_exists(objfile))
+  {
+    std::cout << "bunny files absent: shared-data checks skipped" << std::endl;
+    return;
+  }
+  CGAL::Indexed_hex_mesh<Point> bunny;
+  CGAL::IO::Hex_mesh_io_error ioerr;
+  HMO_CHECK(CGAL::IO::read_hex_mesh(hexfile, bunny, &ioerr));
+  Surface ref;
+  std::string err;
+  HMO_CHECK(CGAL::IO::read_reference_surface(objfile, ref, &err));
+  if(bunny.hexahedra.empty() || ref.number_of_faces() == 0)
+  {
+    std::cout << "cannot read the bunny: " << ioerr.what() << " " << err << std::endl;
+    return;
+  }
+
+  CGAL::Real_timer t;
+  t.start();
+  const CGAL::Hex_mesh_surface_distance d = CGAL::hex_mesh_surface_distance(bunny, ref);
+  std::cout << "bunny_dualsheet vs bunny_reference.obj: Hausdorff / diagonal = " << d.relative()
+            << " (metro normalisation " << d.metro_relative() << "), " << t.time() << " s" << std::endl;
+  HMO_CHECK(d.relative() < 0.012);
+
+  // the target surface with that reference lies on it
+  const HMO::Hex_mesh_arrays a = HMO::make_hex_mesh_arrays(bunny, K());
+  std::vector<Vec3> rp;
+  std::vector<HMO::Tri> rt;
+  HMO::face_graph_to_triangle_soup(ref, get(CGAL::vertex_point, ref), K(), rp, rt);
+  t.reset();
+  HMO::Target_surface ts(a, rp, rt);
+  std::cout << "bunny target surface: " << t.time() << " s, "
+            << ts.number_of_vertices_of_class(Vertex_class::corner) << " corners, "
+            << ts.number_of_vertices_of_class(Vertex_class::sharp) << " sharp, "
+            << ts.number_of_vertices_of_class(Vertex_class::regular) << " regular, "
+            << ts.feature_lines().size() << " feature lines" << std::endl;
+  double off = 0.;
+  for(const Vec3& p : ts.target_positions())
+  {
+    Vec3 q;
+    ts.closest_on_reference(p, q);
+    off = (std::max)(off, HMO::norm(p - q));
+  }
+  HMO_CHECK(off < 1e-9 * d.reference_diagonal);
+  std::vector<HMO::Boundary_constraint> bc;
+  t.reset();
+  ts.update_constraints(a.points, bc);
+  std::cout << "bunny update_constraints: " << t.time() << " s" << std::endl;
+  bool unit = true;
+  for(const auto& c : bc)
+    if(c.type == Vertex_class::regular || c.type == Vertex_class::sharp)
+      unit = unit && std::abs(HMO::norm(c.direction) - 1.) < 1e-9;
+  HMO_CHECK(unit);
+}
+
+int main(int, char** argv)
+{
+  test_boundary_extraction();
+  test_features();
+  test_constraints();
+  test_surface_error();
+  test_shared_data();
+  return hmo_test::report(argv[0]);
+}
