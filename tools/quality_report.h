@@ -233,8 +233,8 @@ inline std::string file_name_of(const std::string& path)
 inline std::string histogram_svg(const Mesh_report& input, const Mesh_report* output)
 {
   typedef CGAL::Hex_mesh_quality Q;
-  const int W = 900, H = 480;
-  const double left = 80, right = 20, top = 92, bottom = 62;
+  const int W = 900, H = 500;
+  const double left = 80, right = 20, top = 112, bottom = 62;
   const double pw = W - left - right, ph = H - top - bottom;
   const char* colour_before = "#4e79a7";
   const char* colour_after = "#f28e2b";
@@ -245,11 +245,9 @@ inline std::string histogram_svg(const Mesh_report& input, const Mesh_report* ou
   if(output)
     for(std::size_t c : output->quality.histogram)
       max_count = (std::max)(max_count, c);
-  // log axis: y(c) = log10(1 + c) / log10(1 + top_tick)
-  double top_tick = 1;
-  while(top_tick < double(max_count))
-    top_tick *= 10;
-  const double log_top = std::log10(1. + top_tick);
+  // log axis: y(c) = log10(1 + c) / log_top, with headroom above the
+  // highest bar for its count label
+  const double log_top = (std::max)(1.12 * std::log10(1. + double(max_count)), 1.);
   auto y_of = [&](double c) { return top + ph - ph * std::log10(1. + c) / log_top; };
   auto x_of = [&](double sj) { return left + pw * (sj + 1.) / 2.; };
 
@@ -273,14 +271,16 @@ inline std::string histogram_svg(const Mesh_report& input, const Mesh_report* ou
   if(output)
     legend(72, colour_after, "after", *output);
 
-  // inverted region and plot frame
+  // inverted region, with its legend entry below the others
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << x_of(0) - left << "\" height=\"" << ph
     << "\" fill=\"#fbe3e3\"/>\n";
-  s << "<text x=\"" << left + 6 << "\" y=\"" << top + 16 << "\" font-size=\"12\" fill=\"#b03030\">"
-    << "inverted (scaled Jacobian &lt; 0)</text>\n";
+  const double legend_y = output ? 92 : 72;
+  s << "<rect x=\"" << left << "\" y=\"" << legend_y - 11 << "\" width=\"14\" height=\"14\" fill=\"#fbe3e3\" stroke=\"#b03030\"/>\n";
+  s << "<text x=\"" << left + 20 << "\" y=\"" << legend_y << "\" font-size=\"13\" fill=\"#b03030\">"
+    << "inverted elements: scaled Jacobian &lt; 0</text>\n";
 
   // y grid and ticks
-  for(double t = 1; t <= top_tick; t *= 10)
+  for(double t = 1; std::log10(1. + t) <= log_top; t *= 10)
   {
     const double y = y_of(t);
     s << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + pw << "\" y2=\"" << y
