@@ -20,6 +20,26 @@
 
 namespace CGAL {
 
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+/// the 8 corners of a hexahedron as doubles, read through the traits of `np`
+template <class PointRange, class NamedParameters>
+std::array<Vec3, 8> corner_positions(const PointRange& corners, const NamedParameters& np)
+{
+  typedef typename std::decay<decltype(corners[0])>::type Point;
+  typedef typename Kernel_traits<Point>::Kernel Default_traits;
+  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::geom_traits),
+                                               Default_traits());
+  std::array<Vec3, 8> p;
+  for(int i = 0; i < 8; ++i)
+    p[i] = to_vec3(corners[i], gt);
+  return p;
+}
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+
 /*!
 \ingroup PkgHexahedralMeshOptimizationQuality
 
@@ -59,14 +79,8 @@ template <class PointRange, class CGAL_NP_TEMPLATE_PARAMETERS>
 double hex_scaled_jacobian(const PointRange& corners,
                            const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  typedef typename std::decay<decltype(corners[0])>::type Point;
-  typedef typename Kernel_traits<Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                               Default_traits());
-  std::array<Hexahedral_mesh_optimization::internal::Vec3, 8> p;
-  for(int i = 0; i < 8; ++i)
-    p[i] = Hexahedral_mesh_optimization::internal::to_vec3(corners[i], gt);
-  return Hexahedral_mesh_optimization::internal::scaled_jacobian(p);
+  return Hexahedral_mesh_optimization::internal::scaled_jacobian(
+    Hexahedral_mesh_optimization::internal::corner_positions(corners, np));
 }
 
 /*!
@@ -82,14 +96,8 @@ template <class PointRange, class CGAL_NP_TEMPLATE_PARAMETERS>
 double hex_corner_scaled_jacobian(const PointRange& corners,
                                   const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  typedef typename std::decay<decltype(corners[0])>::type Point;
-  typedef typename Kernel_traits<Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                               Default_traits());
-  std::array<Hexahedral_mesh_optimization::internal::Vec3, 8> p;
-  for(int i = 0; i < 8; ++i)
-    p[i] = Hexahedral_mesh_optimization::internal::to_vec3(corners[i], gt);
-  return Hexahedral_mesh_optimization::internal::corner_scaled_jacobian(p);
+  return Hexahedral_mesh_optimization::internal::corner_scaled_jacobian(
+    Hexahedral_mesh_optimization::internal::corner_positions(corners, np));
 }
 
 /*!
