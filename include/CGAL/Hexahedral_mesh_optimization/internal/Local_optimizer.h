@@ -42,6 +42,7 @@
 
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct Local_optimizer_settings
   int rings = 2;
   int max_rings = 6;
   double time_limit_seconds = 60.;
+  /// MSJ stages: a step that takes a region's minimum SJ below this floor
+  /// (and below the region's current minimum) is rolled back, so the mesh's
+  /// MSJ never drops under it (set it to the MSJ at the start of the stage)
+  double min_sj_floor = -std::numeric_limits<double>::infinity();
 };
 
 struct Local_optimizer_report
@@ -185,8 +190,9 @@ private:
       for(std::size_t i = 0; i < region.hexes.size(); ++i) trial[i] = hex_sj(points, region.hexes[i]);
       std::size_t nbad, ninv; double nmin;
       counts(trial, nbad, ninv, nmin);
-      // rollback: neither the bad nor the inverted count may rise
-      if(nbad > bad || ninv > inv)
+      // rollback: neither the bad nor the inverted count may rise, nor the
+      // region's minimum fall below the stage's floor
+      if(nbad > bad || ninv > inv || (nmin < s.min_sj_floor && nmin < minsj))
       {
         for(std::size_t i = 0; i < region.free_vertices.size(); ++i) points[region.free_vertices[i]] = saved[i];
         ++rep.rolled_back_steps;
