@@ -205,6 +205,35 @@ public:
     }
   }
 
+  /// The constraint of one boundary vertex `v` at position `p` (what
+  /// `update_constraints()` computes for it), for the per-vertex moves of
+  /// the quality stages.
+  Boundary_constraint constraint_at(std::size_t v, const Vec3& p) const
+  {
+    Boundary_constraint c;
+    c.type = classes_[v];
+    const std::size_t bi = boundary_.boundary_index[v];
+    switch(c.type)
+    {
+    case Vertex_class::interior:
+      break;
+    case Vertex_class::regular:
+      closest_on_reference(p, c.anchor, &c.direction);
+      if(dot(c.direction, outward_[bi]) < 0.)
+        c.direction = -1. * c.direction;
+      if(!(squared_norm(c.direction) > 0.))
+        c.direction = outward_[bi];
+      break;
+    case Vertex_class::sharp:
+      closest_on_feature_line(bi, p, c.anchor, c.direction);
+      break;
+    default:
+      c.anchor = omega_[bi];
+      break;
+    }
+    return c;
+  }
+
   /// Moves every boundary vertex of `points` onto its anchor (see
   /// `update_constraints()`); interior vertices are left alone.
   void project_to_target(std::vector<Vec3>& points) const
