@@ -1,0 +1,243 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_WORST_ELEMENT_SMOOTHING_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_WORST_ELEMENT_SMOOTHING_H
+
+// Max-min vertex smoothing of the worst elements: the second half of every
+// MSJ stage (Section 3.4 runs the edge-angle optimiser with a positive target;
+// what that leaves below the target is handled here).
+//
+// The edge-angle energy is a least-squares energy: it makes most angles
+// right but it does not maximise the worst scaled Jacobian, and near the end
+// of a stage it stalls on a handful of elements whose best shape is a
+// compromise between neighbours. Here one vertex moves at a time to maximise
+// the minimum of the scaled Jacobian samples (8 corners + centre) of the hexes
+// around it, in the style of Freitag & Knupp's optimisation-based max-min
+// smoothing:
+//   - ascent direction: the gradient (central differences) of a soft minimum
+//     of the vertex's samples, s_min − (1/k) log Σ exp(−k (s − s_min)),
+//     k = 60: the plain minimum has no gradient where two samples tie, which
+//     is exactly where the optimum of a max-min problem sits;
+//   - the direction is restricted by the vertex's class: the tangent plane of
+//     the reference for a regular boundary vertex, the feature tangent for a
+//     sharp one; corners never move;
+//   - backtracking from 0.3 × the vertex's mean edge length; a boundary
+//     vertex is projected onto its anchor (reference surface or feature line)
+//     after the move, so the boundary stays on the target surface;
+//   - a move is accepted only if the minimum over the hexes around the vertex
+//     rises: no element ever falls below the smallest value it was compared
+//     with, hence the mesh's MSJ never decreases and no element inverts.
+// Sweeps visit the vertices of the elements below the current goal
+// (min(target, MSJ + band)) worst first, until the MSJ stops rising.
+
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Worst_element_smoothing_settings
+{
+  double target_sj = 1.;          ///< elements at or above it are left alone
+  double band = 0.05;             ///< also work on elements within `band` of the MSJ
+  int max_sweeps = 200;
+  int steps_per_vertex = 3;
+  double time_limit_seconds = 10.;
+  double min_gain = 1e-5;         ///< a sweep that raises the MSJ by less ends the run (after `patience` sweeps)
+  int patience = 3;
+  /// largest distance between the boundary around a moved vertex and the
+  /// reference (mesh units); infinity disables the check
+  double max_surface_deviation = std::numeric_limits<double>::infinity();
+};
+
+struct Worst_element_smoothing_report
+{
+  double msj_before = 0., msj_after = 0.;
+  int sweeps = 0;
+  std::size_t moves = 0;
+};
+
+class Worst_element_smoothing
+{
+public:
+  /// `target` may be null: the boundary is then frozen; `guard` may be null:
+  /// no bound on the surface deviation
+  Worst_element_smoothing(const Hex_mesh_topology& topo, const Target_surface* target,
+                          const Surface_guard* guard = nullptr)
+    : m_topo(topo), m_target(target), m_guard(guard)
+  {}
+
+  Worst_element_smoothing_report run(std::vector<Vec3>& points, const Worst_element_smoothing_settings& s)
+  {
+    m_max_deviation = (m_target && m_guard) ? s.max_surface_deviation : std::numeric_limits<double>::infinity();
+    typedef std::chrono::steady_clock Clock;
+    const auto start = Clock::now();
+    const std::size_t nh = m_topo.number_of_hexes();
+    std::vector<double> sj(nh);
+    for(std::size_t h = 0; h < nh; ++h) sj[h] = hex_sj(points, h);
+    Worst_element_smoothing_report rep;
+    rep.msj_before = rep.msj_after = nh ? *std::min_element(sj.begin(), sj.end()) : 1.;
+    std::vector<int> mark(m_topo.number_of_vertices(), -1);
+    int idle = 0;
+    for(int sweep = 0; sweep < s.max_sweeps; ++sweep)
+    {
+      if(std::chrono::duration<double>(Clock::now() - start).count() > s.time_limit_seconds) break;
+      const double msj = *std::min_element(sj.begin(), sj.end());
+      if(msj >= s.target_sj) break;
+      const double goal = (std::min)(s.target_sj, msj + s.band);
+      // vertices of the elements below the goal, worst element first
+      std::vector<std::pair<double, std::size_t> > order;
+      for(std::size_t h = 0; h < nh; ++h)
+        if(sj[h] < goal)
+          for(std::size_t v : m_topo.hexes()[h])
+            if(mark[v] != sweep) { mark[v] = sweep; order.push_back({vertex_min(points, v, sj), v}); }
+      std::sort(order.begin(), order.end());
+      ++rep.sweeps;
+      for(const auto& o : order)
+        rep.moves += improve_vertex(points, o.second, sj, s.steps_per_vertex);
+      const double now = *std::min_element(sj.begin(), sj.end());
+      idle = (now - msj < s.min_gain) ? idle + 1 : 0;
+      rep.msj_after = now;
+      if(idle >= s.patience) break;
+    }
+    return rep;
+  }
+
+  /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
+  double local_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
+  {
+    double m = 2.;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      std::array<Vec3, 8> p = corners(points, c->hex);
+      p[c->local] = x;
+      m = (std::min)(m, scaled_jacobian(p));
+    }
+    return m;
+  }
+
+private:
+  static constexpr double softness = 60.;
+
+  std::array<Vec3, 8> corners(const std::vector<Vec3>& points, std::size_t h) const
+  {
+    std::array<Vec3, 8> p;
+    for(int i = 0; i < 8; ++i) p[i] = points[m_topo.hexes()[h][i]];
+    return p;
+  }
+
+  double hex_sj(const std::vector<Vec3>& points, std::size_t h) const { return scaled_jacobian(corners(points, h)); }
+
+  double vertex_min(const std::vector<Vec3>&, std::size_t v, const std::vector<double>& sj) const
+  {
+    double m = 2.;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) m = (std::min)(m, sj[c->hex]);
+    return m;
+  }
+
+  /// all samples of the hexes around v with v at x
+  void samples(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, std::vector<double>& out) const
+  {
+    out.clear();
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      std::array<Vec3, 8> p = corners(points, c->hex);
+      p[c->local] = x;
+      for(int i = 0; i < 8; ++i) out.push_back(corner_scaled_jacobian(p, i));
+      out.push_back(centre_scaled_jacobian(p));
+    }
+  }
+
+  double soft_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, std::vector<double>& buf) const
+  {
+    samples(points, v, x, buf);
+    const double m = *std::min_element(buf.begin(), buf.end());
+    double sum = 0.;
+    for(double s : buf) sum += std::exp(-softness * (s - m));
+    return m - std::log(sum) / softness;
+  }
+
+  /// up to `steps` ascent steps on vertex v; returns the number accepted
+  std::size_t improve_vertex(std::vector<Vec3>& points, std::size_t v, std::vector<double>& sj, int steps) const
+  {
+    const Vertex_class cls = m_target ? m_target->vertex_class(v)
+                                      : (m_topo.is_boundary_vertex(v) ? Vertex_class::corner : Vertex_class::interior);
+    if(cls == Vertex_class::corner) return 0;
+    double length = 0.; int ne = 0;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+      for(int k = 0; k < 3; ++k, ++ne)
+        length += norm(points[m_topo.hexes()[c->hex][hex_corner_edges[c->local][k]]] - points[v]);
+    length /= (std::max)(ne, 1);
+    if(!(length > 0.)) return 0;
+
+    std::vector<double> buf;
+    std::size_t accepted = 0;
+    const bool check_surface = cls != Vertex_class::interior && std::isfinite(m_max_deviation);
+    const double allowed = check_surface ? (std::max)(m_max_deviation, m_guard->local_deviation(points, v, points[v])) : 0.;
+    double f0 = local_minimum(points, v, points[v]);
+    for(int step = 0; step < steps; ++step)
+    {
+      const Vec3 x0 = points[v];
+      const double h = 1e-4 * length;
+      Vec3 g;
+      for(int d = 0; d < 3; ++d)
+      {
+        Vec3 xp = x0, xm = x0;
+        xp[d] += h; xm[d] -= h;
+        g[d] = (soft_minimum(points, v, xp, buf) - soft_minimum(points, v, xm, buf)) / (2. * h);
+      }
+      Boundary_constraint bc;
+      if(cls != Vertex_class::interior)
+      {
+        bc = m_target->constraint_at(v, x0);
+        if(cls == Vertex_class::regular) g = g - dot(g, bc.direction) * bc.direction;
+        else g = dot(g, bc.direction) * bc.direction;
+      }
+      const double gn = norm(g);
+      if(!(gn > 0.)) break;
+      const Vec3 dir = (1. / gn) * g;
+      bool moved = false;
+      for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
+      {
+        Vec3 x = x0 + t * dir;
+        if(cls != Vertex_class::interior) x = m_target->constraint_at(v, x).anchor;
+        const double f = local_minimum(points, v, x);
+        if(f > f0 + 1e-9 && (!check_surface || m_guard->local_deviation(points, v, x) <= allowed))
+        {
+          points[v] = x;
+          f0 = f;
+          moved = true;
+          break;
+        }
+      }
+      if(!moved) break;
+      ++accepted;
+    }
+    if(accepted)
+      for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) sj[c->hex] = hex_sj(points, c->hex);
+    return accepted;
+  }
+
+  const Hex_mesh_topology& m_topo;
+  const Target_surface* m_target;
+  const Surface_guard* m_guard;
+  double m_max_deviation = std::numeric_limits<double>::infinity();
+};
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_WORST_ELEMENT_SMOOTHING_H
