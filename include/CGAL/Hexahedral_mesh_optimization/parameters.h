@@ -33,6 +33,11 @@ enum relax_surface_t { relax_surface };
 enum local_iterations_t { local_iterations };
 enum barrier_fallback_t { barrier_fallback };
 enum time_limit_t { time_limit };
+enum target_msj_t { target_msj };
+enum surface_tolerance_t { surface_tolerance };
+enum pull_back_t { pull_back };
+enum asj_smoothing_t { asj_smoothing };
+enum edge_angle_stages_t { edge_angle_stages };
 
 } // namespace hex_mesh_internal_np
 
@@ -74,6 +79,17 @@ CGAL_HMO_ADD_PARAMETER(local_iterations)
 CGAL_HMO_ADD_PARAMETER(barrier_fallback)
 /// wall-clock budget in seconds of the edge-angle stage (default 60)
 CGAL_HMO_ADD_PARAMETER(time_limit)
+/// the MSJ the quality stages aim at; 1 (default): as high as they get it
+CGAL_HMO_ADD_PARAMETER(target_msj)
+/// largest surface error (relative to the reference's bounding-box diagonal)
+/// the quality stages may cause by moving boundary vertices (default 0.005)
+CGAL_HMO_ADD_PARAMETER(surface_tolerance)
+/// whether the inversion-free pull-back runs when the surface error exceeds the tolerance (default true)
+CGAL_HMO_ADD_PARAMETER(pull_back)
+/// whether the final ASJ smoothing runs (default true)
+CGAL_HMO_ADD_PARAMETER(asj_smoothing)
+/// whether each MSJ stage starts with the paper's edge-angle optimiser (default true)
+CGAL_HMO_ADD_PARAMETER(edge_angle_stages)
 
 #undef CGAL_HMO_ADD_PARAMETER
 
