@@ -49,6 +49,32 @@ template <class GeomTraits>
 void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vector<Vec3>&, std::vector<Tri>&)
 {}
 
+/// the untangler's settings and the reference surface (as a soup) from named parameters
+template <class NamedParameters, class GeomTraits>
+void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, Untangle_settings& s,
+                              std::vector<Vec3>& ref_points, std::vector<Tri>& ref_tris)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  s.sharp_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.);
+  s.alpha = choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.);
+  s.beta = choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.);
+  s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6);
+  s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
+  s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
+  s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
+  s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
+  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 60.);
+  face_graph_to_soup(
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), No_reference_surface()),
+    gt, ref_points, ref_tris);
+  if(!ref_tris.empty())
+  {
+    s.reference_points = &ref_points;
+    s.reference_triangles = &ref_tris;
+  }
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 
@@ -158,26 +184,9 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
 
   HMO::internal::Untangle_settings s;
-  s.sharp_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.);
-  s.alpha = choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.);
-  s.beta = choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.);
-  s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6);
-  s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
-  s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
-  s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
-  s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
-  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 60.);
-
   std::vector<HMO::internal::Vec3> ref_points;
   std::vector<HMO::internal::Tri> ref_tris;
-  HMO::internal::face_graph_to_soup(
-    choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), HMO::internal::No_reference_surface()),
-    gt, ref_points, ref_tris);
-  if(!ref_tris.empty())
-  {
-    s.reference_points = &ref_points;
-    s.reference_triangles = &ref_tris;
-  }
+  HMO::internal::read_untangle_parameters(np, gt, s, ref_points, ref_tris);
 
   HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);

@@ -1,0 +1,229 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_IMPROVE_HEX_MESH_QUALITY_H
+#define CGAL_IMPROVE_HEX_MESH_QUALITY_H
+
+#include <CGAL/untangle_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_quality_improver.h>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+/// the quality settings from named parameters (the reference surface is
+/// read by `read_untangle_parameters()`)
+template <class NamedParameters>
+void read_quality_parameters(const NamedParameters& np, const Untangle_settings& u, Quality_settings& s)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  s.target_msj = choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), 1.);
+  s.surface_tolerance = choose_parameter(get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005);
+  s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
+  s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
+  s.edge_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::edge_angle_stages), true);
+  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 30.);
+  s.sharp_angle = u.sharp_angle;
+  s.xi = u.xi;
+  s.local_iterations = u.local_iterations;
+  s.alpha = (std::max)(u.alpha, 500.);
+  s.beta = (std::max)(u.beta, 500.);
+  s.reference_points = u.reference_points;
+  s.reference_triangles = u.reference_triangles;
+}
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+
+\brief Raises the minimum scaled Jacobian (MSJ) of a hexahedral mesh in
+stages, then its average (ASJ), keeping the boundary on a reference surface.
+
+Sections 3.3 and 3.4 of Xu & Chen (2018) and the final smoothing:
+- when the boundary is farther from the reference than `surface_tolerance`
+  (after an untangling that relaxed it), an inversion-free pull-back brings it
+  back (SLIM on the 9 Jacobian samples of each hex, flip-avoiding line search);
+- MSJ stages with targets 0.1, 0.2, … up to `target_msj`: each runs the
+  edge-angle local optimiser on the regions of the elements below the target
+  (α, β ≥ 500, rollback whenever an element would fall under the MSJ the stage
+  started from), projects the boundary back onto the target surface, then a
+  max-min smoothing of the vertices of the elements still below the target,
+  whose boundary moves stay within `surface_tolerance` of the reference. The
+  first stage that misses its target ends the schedule;
+- an ASJ smoothing that raises the mean without lowering any element under
+  the MSJ reached.
+
+The mesh returned never has a lower MSJ (nor more inverted elements) than the
+input: when nothing better is found the input is returned as it was.
+
+\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+
+\param mesh the mesh, optimised in place
+\param np an optional sequence of named parameters among the ones listed below
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{target_msj}
+    \cgalParamDescription{the MSJ to reach; the stages stop there}
+    \cgalParamType{`double`}
+    \cgalParamDefault{1 (as high as the method gets it)}
+  \cgalParamNEnd
+  \cgalParamNBegin{surface_tolerance}
+    \cgalParamDescription{largest surface error, relative to the reference's bounding-box diagonal, that the boundary moves of the quality stages may cause}
+    \cgalParamType{`double`}
+    \cgalParamDefault{0.005}
+  \cgalParamNEnd
+  \cgalParamNBegin{reference_surface}
+    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on}
+    \cgalParamType{a model of `FaceListGraph` with an internal vertex point map, e.g. `Surface_mesh`}
+    \cgalParamDefault{the boundary of the input mesh}
+  \cgalParamNEnd
+  \cgalParamNBegin{sharp_angle}
+    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
+    \cgalParamType{`double`}
+    \cgalParamDefault{165}
+  \cgalParamNEnd
+  \cgalParamNBegin{alpha}
+    \cgalParamDescription{weight of the feature and corner constraints in the edge-angle stages (at least 500)}
+    \cgalParamType{`double`}
+    \cgalParamDefault{1000}
+  \cgalParamNEnd
+  \cgalParamNBegin{beta}
+    \cgalParamDescription{weight of the tangent-plane constraint in the edge-angle stages (at least 500)}
+    \cgalParamType{`double`}
+    \cgalParamDefault{1000}
+  \cgalParamNEnd
+  \cgalParamNBegin{edge_angle_stages}
+    \cgalParamDescription{whether each MSJ stage starts with the edge-angle optimiser}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{pull_back}
+    \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{asj_smoothing}
+    \cgalParamDescription{whether the final ASJ smoothing runs}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{time_limit}
+    \cgalParamDescription{wall-clock budget in seconds}
+    \cgalParamType{`double`}
+    \cgalParamDefault{30}
+  \cgalParamNEnd
+  \cgalParamNBegin{visitor}
+    \cgalParamDescription{an object notified of stages and rounds}
+    \cgalParamType{a class with the functions of `Hexahedral_mesh_optimization::Default_optimization_visitor`}
+    \cgalParamDefault{`Hexahedral_mesh_optimization::Default_optimization_visitor`}
+  \cgalParamNEnd
+  \cgalParamNBegin{geom_traits}
+    \cgalParamDescription{an instance of a geometric traits class}
+    \cgalParamType{a model of `HexMeshOptimizationTraits`}
+    \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
+
+\returns MSJ, ASJ and inverted count before and after, surface error against
+  the reference, time and a report per stage; `success` is true when the mesh
+  has no inverted element and reached `target_msj`.
+*/
+template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
+Hexahedral_mesh_optimization::Optimization_result
+improve_hex_mesh_quality(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace HMO = Hexahedral_mesh_optimization;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+
+  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
+  HMO::Default_optimization_visitor default_visitor;
+  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
+
+  HMO::internal::Untangle_settings u;
+  std::vector<HMO::internal::Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::read_untangle_parameters(np, gt, u, ref_points, ref_tris);
+  HMO::internal::Quality_settings s;
+  HMO::internal::read_quality_parameters(np, u, s);
+
+  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const HMO::internal::Hex_mesh_arrays original = arrays;
+  HMO::internal::Hex_mesh_quality_improver<typename std::remove_reference<decltype(visitor)>::type> improver(s, visitor);
+  const HMO::Optimization_result result = improver.run(arrays, original);
+  Adapter::write_back(arrays, mesh, gt);
+  return result;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+
+\brief The whole pipeline: untangles the mesh (`untangle_hex_mesh()`, only
+when it has inverted elements), then improves it (`improve_hex_mesh_quality()`:
+pull-back, MSJ stages, ASJ smoothing), the surface error being measured
+against the input's boundary (or the reference surface) throughout.
+
+It takes the named parameters of both functions; `time_limit` is the budget of
+each part. The result's stages list both parts in order.
+*/
+template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
+Hexahedral_mesh_optimization::Optimization_result
+optimize_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace HMO = Hexahedral_mesh_optimization;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+
+  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
+  HMO::Default_optimization_visitor default_visitor;
+  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
+  typedef typename std::remove_reference<decltype(visitor)>::type Visitor;
+
+  HMO::internal::Untangle_settings u;
+  std::vector<HMO::internal::Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::read_untangle_parameters(np, gt, u, ref_points, ref_tris);
+  HMO::internal::Quality_settings s;
+  HMO::internal::read_quality_parameters(np, u, s);
+
+  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const HMO::internal::Hex_mesh_arrays original = arrays;
+  HMO::Optimization_result result;
+  bool untangled = false;
+  if(HMO::internal::quality_statistics(arrays).inverted > 0)
+  {
+    HMO::internal::Hex_mesh_untangler<Visitor> untangler(u, visitor);
+    result = untangler.run(arrays);
+    untangled = true;
+  }
+  HMO::internal::Hex_mesh_quality_improver<Visitor> improver(s, visitor);
+  const HMO::Optimization_result q = improver.run(arrays, original);
+  if(untangled)
+  {
+    result.stages.insert(result.stages.end(), q.stages.begin(), q.stages.end());
+    result.inverted_after = q.inverted_after;
+    result.msj_after = q.msj_after;
+    result.asj_after = q.asj_after;
+    result.surface_error = q.surface_error;
+    result.seconds += q.seconds;
+    result.kept_input = result.kept_input && q.kept_input;
+    result.success = q.success;
+  }
+  else
+    result = q;
+  Adapter::write_back(arrays, mesh, gt);
+  return result;
+}
+
+} // namespace CGAL
+
+#endif // CGAL_IMPROVE_HEX_MESH_QUALITY_H
