@@ -6,19 +6,33 @@
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_BARRIER_UNTANGLER_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_BARRIER_UNTANGLER_H
 
-// The second untangling stage, for regions on which the edge-angle energy
-// stalls: the regularised foldover-free energy of Garanzha, Kaporin, Kudryavtseva,
-// Protais, Ray, Sokolov ("Foldover-free maps in 50 lines of code", 2021) on
-// the 9 Jacobian samples of each hex (8 corner frames and the centre frame
-// of principal axes — exactly the samples of the Verdict scaled Jacobian):
+// The foldover-free energy of Garanzha, Kaporin, Kudryavtseva, Protais, Ray,
+// Sokolov ("Foldover-free maps in 50 lines of code", 2021) on the 9 Jacobian
+// samples of each hex (8 corner frames and the centre frame of principal
+// axes — exactly the samples of the Verdict scaled Jacobian):
 //
 //     f_ε(J) = |J|²_F / χ(det J, ε)^(2/3),   χ(D, ε) = (D + √(ε² + D²)) / 2,
 //
-// plus the boundary energy of Eq. 6 (same rows as the edge-angle stage), by
-// L-BFGS with a backtracking line search, with ε decreased between passes
-// as in the reference (ε → 0 as the frames become positive). The
-// untangling guarantee is kept by the caller: a region result is accepted
-// only if it does not increase its number of inverted elements.
+// plus the boundary energy of Eq. 6 (same rows as the edge-angle stage),
+// minimised by L-BFGS with a backtracking line search. Two uses:
+//
+// * `run()` — untangling: ε decreased between passes as in the reference
+//   (ε → 0 as the frames become positive). The untangling guarantee is kept
+//   by the caller: a region result is accepted only if it does not increase
+//   its number of inverted elements.
+// * `run_injective()` — from a configuration whose 9 frames per hex are all
+//   positive, ε = 0: f is +∞ as soon as a frame degenerates, and the line
+//   search rejects such steps, so no hex of the region can invert (the
+//   frames' determinants have the sign of the Verdict scaled Jacobian
+//   samples). With a strong boundary weight it pulls the boundary back
+//   toward the target surface after untangling.
+//
+// Speed: the energy loop reads, per region hex, the 8 local indices
+// precomputed once (free vertex index, or a slot of the cached fixed
+// positions) — no hash lookups in the hot loop — and the frames are
+// differences of the 8 corners, written out by hand. A deadline stops the
+// L-BFGS iterations (the result so far is kept: every accepted iterate
+// lowers the energy).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
@@ -26,9 +40,10 @@
 
 #include <Eigen/Dense>
 
+#include <chrono>
 #include <cmath>
 #include <deque>
-#include <unordered_map>
+#include <limits>
 #include <vector>
 
 namespace CGAL {
@@ -38,29 +53,27 @@ namespace internal {
 class Barrier_untangler
 {
 public:
+  typedef std::chrono::steady_clock Clock;
+
   Barrier_untangler(const Hex_mesh_topology& topo, const Local_region& region,
                     const std::vector<Boundary_constraint>& bc, double boundary_weight)
-    : m_topo(topo), m_region(region), m_bc(bc), m_wb(boundary_weight)
-  {
-    for(std::size_t i = 0; i < region.free_vertices.size(); ++i) m_local.emplace(region.free_vertices[i], i);
-  }
+    : m_topo(topo), m_region(region), m_bc(&bc), m_wb(boundary_weight),
+      m_deadline(Clock::time_point::max())
+  {}
 
-  /// Runs `passes` passes of L-BFGS on the free vertices of the region.
+  /// L-BFGS stops at this time (the iterate reached is kept)
+  void set_deadline(Clock::time_point t) { m_deadline = t; }
+  /// the boundary constraints and their weight (between passes of a pull-back)
+  void set_boundary(const std::vector<Boundary_constraint>& bc, double weight) { m_bc = &bc; m_wb = weight; }
+
+  /// Untangling: `passes` passes of L-BFGS on the free vertices of the region,
+  /// ε shrinking as the worst frame becomes positive.
   void run(std::vector<Vec3>& points, int passes = 12, int iterations = 200)
   {
-    const std::size_t n = 3 * m_region.free_vertices.size();
-    Eigen::VectorXd x(n);
-    for(std::size_t i = 0; i < m_region.free_vertices.size(); ++i)
-      for(int d = 0; d < 3; ++d) x[3 * i + d] = points[m_region.free_vertices[i]][d];
-    m_points = &points;
-    // scale of a frame determinant: mean edge length cubed
-    double mean_edge = 0.; std::size_t ne = 0;
-    for(std::size_t h : m_region.hexes)
-      for(int k = 0; k < 12; ++k, ++ne)
-        mean_edge += norm(points[m_topo.hexes()[h][hex_edges[k][0]]] - points[m_topo.hexes()[h][hex_edges[k][1]]]);
-    mean_edge /= (std::max)(std::size_t(1), ne);
-    const double scale = mean_edge * mean_edge * mean_edge;
-    for(int pass = 0; pass < passes; ++pass)
+    Eigen::VectorXd x;
+    setup(points, x);
+    const double scale = m_scale;
+    for(int pass = 0; pass < passes && Clock::now() < m_deadline; ++pass)
     {
       const double min_det = minimum_determinant(x);
       // Garanzha et al.: ε large enough that the energy is finite and smooth,
@@ -73,91 +86,191 @@ public:
     write(x, points);
   }
 
+  /// Injective descent (ε = 0) from positive frames; returns false, leaving
+  /// `points` unchanged, if some frame of the region is not positive at the
+  /// start. Otherwise every frame stays positive.
+  bool run_injective(std::vector<Vec3>& points, int iterations)
+  {
+    Eigen::VectorXd x;
+    setup(points, x);
+    if(!(minimum_determinant(x) > 0.)) return false;
+    m_eps = 0.;
+    lbfgs(x, iterations);
+    write(x, points);
+    return true;
+  }
+
 private:
-  template <class F>
-  void for_each_sample(const Eigen::VectorXd& x, F f) const
+  // corner c's three edge neighbours (hex_corner_edges) and the principal
+  // axes (centre frame) of the Verdict definition
+  static constexpr int plus_[3][4] = {{1, 2, 5, 6}, {2, 3, 6, 7}, {4, 5, 6, 7}};
+  static constexpr int minus_[3][4] = {{0, 3, 4, 7}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+
+  void setup(const std::vector<Vec3>& points, Eigen::VectorXd& x)
   {
     const auto& hexes = m_topo.hexes();
-    for(std::size_t h : m_region.hexes)
-    {
-      std::array<Vec3, 8> p;
-      for(int i = 0; i < 8; ++i) p[i] = position(x, hexes[h][i]);
-      for(int c = 0; c < 8; ++c)
+    const std::size_t nf = m_region.free_vertices.size();
+    // local index of every vertex of the region's hexes: free i ≥ 0, fixed -1-slot
+    std::vector<std::pair<std::size_t, int> > ids; // (vertex, id), sorted by vertex
+    ids.reserve(nf);
+    for(std::size_t i = 0; i < nf; ++i) ids.emplace_back(m_region.free_vertices[i], int(i));
+    m_fixed.clear();
+    m_idx.resize(m_region.hexes.size());
+    auto find = [&](std::size_t v) -> int {
+      auto it = std::lower_bound(ids.begin(), ids.begin() + nf, std::make_pair(v, std::numeric_limits<int>::min()));
+      if(it != ids.begin() + nf && it->first == v) return it->second;
+      return std::numeric_limits<int>::min();
+    };
+    std::vector<std::pair<std::size_t, int> > fixed_ids;
+    for(std::size_t r = 0; r < m_region.hexes.size(); ++r)
+      for(int i = 0; i < 8; ++i)
       {
-        // corner frame: columns p[n_k] - p[c]; weights (+1 at n_k, -1 at c)
-        std::array<std::array<double, 8>, 3> w{};
-        for(int k = 0; k < 3; ++k) { w[k][hex_corner_edges[c][k]] += 1.; w[k][c] -= 1.; }
-        f(h, p, w);
+        const std::size_t v = hexes[m_region.hexes[r]][i];
+        int id = find(v);
+        if(id == std::numeric_limits<int>::min())
+        {
+          id = -1 - int(m_fixed.size());
+          m_fixed.push_back(points[v]);
+        }
+        m_idx[r][i] = id;
       }
-      // centre frame: principal axes / 4
-      static const int plus[3][4] = {{1, 2, 5, 6}, {2, 3, 6, 7}, {4, 5, 6, 7}};
-      static const int minus[3][4] = {{0, 3, 4, 7}, {0, 1, 4, 5}, {0, 1, 2, 3}};
-      std::array<std::array<double, 8>, 3> w{};
-      for(int k = 0; k < 3; ++k)
-        for(int i = 0; i < 4; ++i) { w[k][plus[k][i]] += 0.25; w[k][minus[k][i]] -= 0.25; }
-      f(h, p, w);
+    x.resize(3 * nf);
+    for(std::size_t i = 0; i < nf; ++i)
+      for(int d = 0; d < 3; ++d) x[3 * i + d] = points[m_region.free_vertices[i]][d];
+    // scale of a frame determinant: mean edge length cubed
+    double mean_edge = 0.; std::size_t ne = 0;
+    for(std::size_t h : m_region.hexes)
+      for(int k = 0; k < 12; ++k, ++ne)
+        mean_edge += norm(points[hexes[h][hex_edges[k][0]]] - points[hexes[h][hex_edges[k][1]]]);
+    mean_edge /= double((std::max)(std::size_t(1), ne));
+    m_scale = mean_edge * mean_edge * mean_edge;
+  }
+
+  void corners(const Eigen::VectorXd& x, std::size_t r, double p[8][3]) const
+  {
+    for(int i = 0; i < 8; ++i)
+    {
+      const int id = m_idx[r][i];
+      if(id >= 0) { p[i][0] = x[3 * id]; p[i][1] = x[3 * id + 1]; p[i][2] = x[3 * id + 2]; }
+      else { const Vec3& q = m_fixed[-1 - id]; p[i][0] = q[0]; p[i][1] = q[1]; p[i][2] = q[2]; }
     }
   }
 
-  static Eigen::Matrix3d frame(const std::array<Vec3, 8>& p, const std::array<std::array<double, 8>, 3>& w)
+  // the 9 frames of a hex: J[s] columns k
+  static void frames(const double p[8][3], double J[9][3][3])
   {
-    Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+    for(int c = 0; c < 8; ++c)
+      for(int k = 0; k < 3; ++k)
+      {
+        const int n = hex_corner_edges[c][k];
+        for(int d = 0; d < 3; ++d) J[c][d][k] = p[n][d] - p[c][d];
+      }
     for(int k = 0; k < 3; ++k)
-      for(int i = 0; i < 8; ++i)
-        if(w[k][i] != 0.)
-          for(int d = 0; d < 3; ++d) j(d, k) += w[k][i] * p[i][d];
-    return j;
+      for(int d = 0; d < 3; ++d)
+      {
+        double s = 0.;
+        for(int i = 0; i < 4; ++i) s += p[plus_[k][i]][d] - p[minus_[k][i]][d];
+        J[8][d][k] = 0.25 * s;
+      }
+  }
+
+  static double det3(const double a[3][3])
+  {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+         + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   }
 
   double minimum_determinant(const Eigen::VectorXd& x) const
   {
     double m = std::numeric_limits<double>::max();
-    for_each_sample(x, [&](std::size_t, const std::array<Vec3, 8>& p, const std::array<std::array<double, 8>, 3>& w) {
-      m = (std::min)(m, frame(p, w).determinant());
-    });
+    double p[8][3], J[9][3][3];
+    for(std::size_t r = 0; r < m_region.hexes.size(); ++r)
+    {
+      corners(x, r, p);
+      frames(p, J);
+      for(int s = 0; s < 9; ++s) m = (std::min)(m, det3(J[s]));
+    }
     return m;
-  }
-
-  Vec3 position(const Eigen::VectorXd& x, std::size_t v) const
-  {
-    auto it = m_local.find(v);
-    if(it == m_local.end()) return (*m_points)[v];
-    return {x[3 * it->second], x[3 * it->second + 1], x[3 * it->second + 2]};
   }
 
   double energy(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const
   {
     if(grad) grad->setZero(x.size());
     double e = 0.;
-    const auto& hexes = m_topo.hexes();
-    for_each_sample(x, [&](std::size_t h, const std::array<Vec3, 8>& p, const std::array<std::array<double, 8>, 3>& w) {
-      const Eigen::Matrix3d j = frame(p, w);
-      const double det = j.determinant();
-      const double root = std::sqrt(m_eps * m_eps + det * det);
-      const double chi = 0.5 * (det + root);
-      const double f2 = j.squaredNorm();
-      const double c23 = std::pow(chi, -2. / 3.);
-      e += f2 * c23;
-      if(!grad) return;
-      const double dchi = 0.5 * (1. + det / root);
-      Eigen::Matrix3d cof;
-      cof.col(0) = j.col(1).cross(j.col(2));
-      cof.col(1) = j.col(2).cross(j.col(0));
-      cof.col(2) = j.col(0).cross(j.col(1));
-      const Eigen::Matrix3d g = 2. * c23 * j - (2. / 3.) * f2 * c23 / chi * dchi * cof;
-      for(int i = 0; i < 8; ++i)
+    double p[8][3], J[9][3][3];
+    const bool injective = m_eps == 0.;
+    for(std::size_t r = 0; r < m_region.hexes.size(); ++r)
+    {
+      corners(x, r, p);
+      frames(p, J);
+      double gp[8][3] = {};
+      for(int s = 0; s < 9; ++s)
       {
-        auto it = m_local.find(hexes[h][i]);
-        if(it == m_local.end()) continue;
-        for(int k = 0; k < 3; ++k)
-          if(w[k][i] != 0.)
-            for(int d = 0; d < 3; ++d) (*grad)[3 * it->second + d] += w[k][i] * g(d, k);
+        const double (&j)[3][3] = J[s];
+        const double det = det3(j);
+        double chi, dchi;
+        if(injective)
+        {
+          if(!(det > 0.)) return std::numeric_limits<double>::infinity();
+          chi = det; dchi = 1.;
+        }
+        else
+        {
+          const double root = std::sqrt(m_eps * m_eps + det * det);
+          chi = 0.5 * (det + root);
+          dchi = 0.5 * (1. + det / root);
+        }
+        double f2 = 0.;
+        for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
+        const double c23 = std::pow(chi, -2. / 3.);
+        e += f2 * c23;
+        if(!grad) continue;
+        // cofactor matrix: d det / d J
+        double cof[3][3];
+        cof[0][0] = j[1][1] * j[2][2] - j[1][2] * j[2][1];
+        cof[0][1] = j[1][2] * j[2][0] - j[1][0] * j[2][2];
+        cof[0][2] = j[1][0] * j[2][1] - j[1][1] * j[2][0];
+        cof[1][0] = j[0][2] * j[2][1] - j[0][1] * j[2][2];
+        cof[1][1] = j[0][0] * j[2][2] - j[0][2] * j[2][0];
+        cof[1][2] = j[0][1] * j[2][0] - j[0][0] * j[2][1];
+        cof[2][0] = j[0][1] * j[1][2] - j[0][2] * j[1][1];
+        cof[2][1] = j[0][2] * j[1][0] - j[0][0] * j[1][2];
+        cof[2][2] = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        const double a1 = 2. * c23, a2 = (2. / 3.) * f2 * c23 / chi * dchi;
+        double g[3][3];
+        for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
+        if(s < 8)
+        {
+          for(int k = 0; k < 3; ++k)
+          {
+            const int n = hex_corner_edges[s][k];
+            for(int d = 0; d < 3; ++d) { gp[n][d] += g[d][k]; gp[s][d] -= g[d][k]; }
+          }
+        }
+        else
+        {
+          for(int k = 0; k < 3; ++k)
+            for(int i = 0; i < 4; ++i)
+              for(int d = 0; d < 3; ++d)
+              {
+                gp[plus_[k][i]][d] += 0.25 * g[d][k];
+                gp[minus_[k][i]][d] -= 0.25 * g[d][k];
+              }
+        }
       }
-    });
+      if(grad)
+        for(int i = 0; i < 8; ++i)
+        {
+          const int id = m_idx[r][i];
+          if(id < 0) continue;
+          for(int d = 0; d < 3; ++d) (*grad)[3 * id + d] += gp[i][d];
+        }
+    }
     // boundary energy (Eq. 6), weighted relative to the frame energy's scale
+    const std::vector<Boundary_constraint>& bcs = *m_bc;
     for(std::size_t i = 0; i < m_region.free_vertices.size(); ++i)
     {
-      const Boundary_constraint& b = m_bc[m_region.free_vertices[i]];
+      const Boundary_constraint& b = bcs[m_region.free_vertices[i]];
       if(b.type == Vertex_class::interior) continue;
       const Vec3 d = Vec3{x[3 * i], x[3 * i + 1], x[3 * i + 2]} - b.anchor;
       Vec3 r = d; // corner: the whole displacement
@@ -174,8 +287,10 @@ private:
     std::deque<Eigen::VectorXd> s_hist, y_hist;
     Eigen::VectorXd g, g_new;
     double e = energy(x, &g);
+    if(!std::isfinite(e)) return;
     for(int it = 0; it < iterations; ++it)
     {
+      if((it & 7) == 7 && Clock::now() > m_deadline) break;
       // two-loop recursion
       Eigen::VectorXd q = g;
       std::vector<double> alpha(s_hist.size());
@@ -220,11 +335,13 @@ private:
 
   const Hex_mesh_topology& m_topo;
   const Local_region& m_region;
-  const std::vector<Boundary_constraint>& m_bc;
+  const std::vector<Boundary_constraint>* m_bc;
   double m_wb;
   double m_eps = 1.;
-  std::unordered_map<std::size_t, std::size_t> m_local;
-  const std::vector<Vec3>* m_points = nullptr;
+  double m_scale = 1.;
+  Clock::time_point m_deadline;
+  std::vector<std::array<int, 8> > m_idx; // per region hex: free index, or -1-slot in m_fixed
+  std::vector<Vec3> m_fixed;
 };
 
 } // namespace internal

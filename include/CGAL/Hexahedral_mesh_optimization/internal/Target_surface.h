@@ -492,6 +492,16 @@ private:
       classes_[boundary_.vertices[bi]] = degree[bi] == 0 ? Vertex_class::regular
                                        : degree[bi] == 2 ? Vertex_class::sharp
                                                          : Vertex_class::corner;
+    // corners: back at the input's own position (projected on the
+    // reference). The smoothing keeps only the corners of the 135° set in
+    // place; a vertex that is a corner only at θ (a tip, the end of a
+    // feature line) slides while smoothing, and the surface error (Hausdorff
+    // against the input boundary) is then at least the distance it slid.
+    // Measured after untangling + pull-back (Hex_mesh_untangler.h): bust_in
+    // 0.0086 → 0.0061 of the bbox diagonal, block and cap unchanged.
+    for(std::size_t bi = 0; bi < nb; ++bi)
+      if(degree[bi] != 0 && degree[bi] != 2)
+        closest_on_reference(mesh_points[boundary_.vertices[bi]], omega_[bi]);
     extract_lines(sharp_edge_, degree, lines_);
     line_of_.assign(nb, npos);
     place_on_line_.assign(nb, npos);
