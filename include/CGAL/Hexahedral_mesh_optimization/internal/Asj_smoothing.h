@@ -78,7 +78,7 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -102,7 +102,8 @@ struct Asj_smoothing_settings
   int max_passes = 30;
   /// stop when a pass raises the ASJ by less than this
   double min_asj_gain = 1e-4;
-  /// wall-clock budget, in seconds
+  /// budget in seconds of processor time of the process (std::clock: on a
+  /// loaded machine a wall-clock budget made the result depend on the load)
   double time_limit_seconds = 10.;
   /// try the mean of the best-fitting cuboid corners (candidate 1)
   bool cuboid_targets = true;
@@ -142,7 +143,7 @@ struct Asj_smoothing_report
   double msj_before = 0., msj_after = 0.;
   int passes = 0;
   std::size_t accepted_moves = 0;
-  double seconds = 0.;
+  double seconds = 0.; ///< processor time
 };
 
 namespace asj_detail {
@@ -447,8 +448,8 @@ public:
 
   Asj_smoothing_report run()
   {
-    typedef std::chrono::steady_clock Clock;
-    const auto start = Clock::now();
+    const std::clock_t start = std::clock();
+    auto elapsed = [start] { return double(std::clock() - start) / CLOCKS_PER_SEC; };
     Asj_smoothing_report rep;
     const std::size_t nv = m_topo.number_of_vertices(), nh = m_topo.number_of_hexes();
     if(nh == 0) return rep;
@@ -470,7 +471,7 @@ public:
         for(std::size_t v = 0; v < nv; ++v) if(m_kind[v] == FIXED) active[v] = 0;
       }
       for(std::size_t h = 0; h < nh; ++h) m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa);
-      if(std::chrono::duration<double>(Clock::now() - start).count() > m_s.time_limit_seconds) break;
+      if(elapsed() > m_s.time_limit_seconds) break;
       ++rep.passes;
       std::fill(next.begin(), next.end(), 0);
       for(std::size_t v = 0; v < nv; ++v)
@@ -499,7 +500,7 @@ public:
     }
     rep.asj_after = sum / double(nh);
     rep.msj_after = msj;
-    rep.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    rep.seconds = elapsed();
     return rep;
   }
 
