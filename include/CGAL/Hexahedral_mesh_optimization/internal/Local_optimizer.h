@@ -68,6 +68,14 @@ struct Local_optimizer_settings
   /// (and below the region's current minimum) is rolled back, so the mesh's
   /// MSJ never drops under it (set it to the MSJ at the start of the stage)
   double min_sj_floor = -std::numeric_limits<double>::infinity();
+  /// regions with more hexes are skipped (left to a later stage); a round
+  /// in which every region is skipped ends the run. The sparse Cholesky
+  /// factorisation of one region grows much faster than its size
+  /// (impeller_stresstest: one 11k-hex region, 65 % of the time in it).
+  std::size_t max_region_hexes = std::numeric_limits<std::size_t>::max();
+  /// the run ends after this many consecutive rounds that remove no bad
+  /// element (a later stage takes over)
+  int max_stalled_rounds = std::numeric_limits<int>::max();
 };
 
 struct Local_optimizer_report
@@ -104,6 +112,7 @@ public:
 
     double alpha = s.alpha, beta = s.beta, xi = s.xi_start;
     int rings = s.rings;
+    int stalled_rounds = 0;
     std::vector<double> length(m_topo.number_of_edges(), 0.);
     std::vector<Boundary_constraint> bc;
     std::size_t bad = rep.bad_before;
@@ -117,13 +126,21 @@ public:
       const std::vector<Local_region> regions = extract_local_regions(m_topo, seeds, rings);
       Energy_weights w;
       w.alpha = alpha; w.beta = beta;
+      std::size_t optimized = 0;
       for(const Local_region& region : regions)
-        optimize_region(region, points, sj, bc, w, xi, s, rep);
+        if(region.hexes.size() <= s.max_region_hexes)
+        {
+          optimize_region(region, points, sj, bc, w, xi, s, rep);
+          ++optimized;
+        }
+      if(optimized == 0) break;
       const std::size_t new_bad = count_bad(sj, s.target_sj);
       if(on_round) on_round(round, new_bad);
       const bool stalled = new_bad >= bad;
+      stalled_rounds = stalled ? stalled_rounds + 1 : 0;
       if(stalled) rings = (std::min)(rings + 1, s.max_rings);
       bad = new_bad;
+      if(stalled_rounds >= s.max_stalled_rounds) break;
       xi -= s.xi_step;
       if(xi < s.xi_min - 1e-12 || stalled)
       {
