@@ -91,10 +91,16 @@ regions around the inverted elements, the unified edge-angle energy with the
 boundary and feature constraints of its Eq. 6, solved by a local-global
 linearisation with monotone rollback (the number of inverted elements never
 rises from one accepted step to the next), and the paper's ξ / α / β schedule
-that lets the surface relax when it must. What that stage leaves is handed to
-a second stage, a foldover-free barrier energy on the 9 Jacobian samples of
-each hex (`barrier_fallback`). The result never has more inverted elements
-than the input: when nothing better is found the input is returned as it was.
+that lets the surface relax when it must. What that stage leaves (also
+regions of more than 3000 hexes, and what is still inverted after 8 rounds
+without progress) is handed to a second stage, a foldover-free barrier
+energy on the 9 Jacobian samples of each hex (`barrier_fallback`), with a
+strong boundary weight first and weaker ones only for what stays inverted.
+A last stage ("surface") pulls the boundary back toward the target surface
+with the same energy used as a true barrier, so that no element inverts on
+the way. The result never has more inverted elements than the input: when
+nothing better is found the input is returned as it was. The result's
+`stages` say what each stage did.
 
 \tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
   (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
@@ -150,7 +156,7 @@ than the input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{wall-clock budget of the edge-angle stage, in seconds}
+    \cgalParamDescription{wall-clock budget of the edge-angle stage, and of the edge-angle and barrier stages together, in seconds}
     \cgalParamType{`double`}
     \cgalParamDefault{60}
   \cgalParamNEnd
