@@ -8,7 +8,7 @@
 //
 // Layout: the command line is in hexmesh_optimize_options.h, the report
 // (text, JSON, SVG) in quality_report.h; this file only sequences the steps.
-// Optimisation stages are added to `run_stages()`.
+// The optimisation is `run_stages()`.
 
 #include "hexmesh_optimize_options.h"
 #include "quality_report.h"
@@ -16,8 +16,12 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/hex_mesh_quality.h>
+#include <CGAL/hex_mesh_reference_check.h>
 #include <CGAL/hex_mesh_surface_error.h>
+#include <CGAL/improve_hex_mesh_quality.h>
+#include <CGAL/untangle_hex_mesh.h>
 
 #include <cctype>
 #include <chrono>
@@ -28,8 +32,11 @@
 
 namespace {
 
+using hexmesh_optimize::format_fixed;
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef CGAL::Indexed_hex_mesh<Kernel::Point_3> Mesh;
+typedef CGAL::Surface_mesh<Kernel::Point_3> Surface;
 typedef std::chrono::steady_clock Clock;
 
 const char* const program = "hexmesh-optimize";
@@ -55,14 +62,77 @@ bool ends_with(const std::string& s, const std::string& suffix)
   return true;
 }
 
-/// The optimisation pipeline, run when an OUTPUT is given. Each stage
-/// changes the vertex positions of `mesh` (never its connectivity), may print
-/// progress to `log` and returns false with `error` set when it cannot go on.
-bool run_stages(Mesh& /*mesh*/, const hexmesh_optimize::Hexmesh_optimize_options& options,
+/// Progress: one line per stage (and per round of long stages).
+struct Progress_visitor : CGAL::Hexahedral_mesh_optimization::Default_optimization_visitor
+{
+  std::ostream* log = nullptr;
+  Clock::time_point start = Clock::now();
+  Clock::time_point last_round = Clock::now();
+
+  void stage_started(const std::string& name, std::size_t bad)
+  {
+    if(!log) return;
+    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << name << ": started";
+    if(bad > 0) *log << ", " << bad << " elements to fix";
+    *log << std::endl;
+    last_round = Clock::now();
+  }
+  void round_finished(const std::string& stage, int round, std::size_t left)
+  {
+    // long stages report at most every 2 seconds
+    if(!log || seconds_since(last_round) < 2.) return;
+    last_round = Clock::now();
+    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << stage << ": round " << round + 1 << ", "
+         << left << " elements left" << std::endl;
+  }
+  void stage_finished(const CGAL::Hexahedral_mesh_optimization::Stage_report& r)
+  {
+    if(!log) return;
+    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << r.name << ": done in "
+         << format_fixed(r.seconds, 2) << " s, inverted " << r.inverted_before << " -> " << r.inverted_after
+         << ", MSJ " << format_fixed(r.msj_after, 3);
+    if(!r.details.empty()) *log << "\n      " << r.details;
+    *log << std::endl;
+  }
+};
+
+/// The optimisation pipeline, run when an OUTPUT is given: the whole
+/// pipeline (`CGAL::optimize_hex_mesh`) or, with --untangle, the untangling
+/// only. Changes the vertex positions of `mesh` (never its connectivity).
+bool run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options, const Surface* reference,
                 std::ostream& log, std::string& /*error*/)
 {
+  namespace HP = CGAL::hex_mesh_parameters;
+  Progress_visitor visitor;
+  if(!options.quiet) visitor.log = &log;
   if(!options.quiet)
-    log << "\nno optimisation stage yet: the mesh is written unchanged\n";
+    log << "\n" << (options.untangle_only ? "untangling" : "optimising") << " (" << mesh.hexahedra.size()
+        << " hexahedra)\n";
+  auto np = HP::sharp_angle(options.sharp_angle,
+            HP::relax_surface(options.relax_surface,
+            HP::time_limit(options.time_limit,
+            HP::target_msj(options.target_msj,
+            HP::surface_tolerance(options.surface_tolerance,
+            HP::asj_smoothing(options.asj_smoothing,
+            HP::pull_back(options.pull_back,
+            CGAL::parameters::visitor(std::ref(visitor)))))))));
+  CGAL::Hexahedral_mesh_optimization::Optimization_result r;
+  if(reference)
+  {
+    auto npr = HP::reference_surface(*reference, np);
+    r = options.untangle_only ? CGAL::untangle_hex_mesh(mesh, npr) : CGAL::optimize_hex_mesh(mesh, npr);
+  }
+  else
+    r = options.untangle_only ? CGAL::untangle_hex_mesh(mesh, np) : CGAL::optimize_hex_mesh(mesh, np);
+  if(!options.quiet)
+  {
+    log << "  result: inverted " << r.inverted_before << " -> " << r.inverted_after << ", MSJ "
+        << format_fixed(r.msj_before, 3) << " -> " << format_fixed(r.msj_after, 3);
+    if(!options.untangle_only && options.target_msj < 1.)
+      log << (r.msj_after >= options.target_msj ? " (target reached)" : " (target not reached)");
+    if(r.kept_input) log << "; nothing better found, the input is kept";
+    log << "\n";
+  }
   return true;
 }
 
@@ -86,6 +156,7 @@ int main(int argc, char** argv)
       break;
   }
   std::ostream& out = std::cout;
+  int exit_status = 0;
 
   try
   {
@@ -100,6 +171,15 @@ int main(int argc, char** argv)
     if(!read)
       return fail(io_error.what());
 
+    Surface reference;
+    const bool has_reference = !options.reference.empty();
+    if(has_reference)
+    {
+      std::string why;
+      if(!CGAL::IO::read_reference_surface(options.reference, reference, &why))
+        return fail(why);
+    }
+
     Mesh_report before;
     before.file = options.input;
     before.quality = CGAL::hex_mesh_quality(mesh);
@@ -112,20 +192,24 @@ int main(int argc, char** argv)
 
     // ---------------------------------------------------- optimise, write
     Mesh_report after;
+    Mesh input_mesh_for_check;
     const bool has_output = !options.output.empty();
     if(has_output)
     {
-      const Mesh input_mesh = mesh; // the reference of the surface error
+      input_mesh_for_check = mesh;
+      const Mesh& input_mesh = input_mesh_for_check; // the reference of the surface error
       const Clock::time_point start = Clock::now();
-      if(!run_stages(mesh, options, out, error))
+      if(!run_stages(mesh, options, has_reference ? &reference : nullptr, out, error))
         return fail(error);
       after.seconds = seconds_since(start);
       const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(mesh);
       after.file = options.output;
       after.quality = CGAL::hex_mesh_quality(mesh);
-      // Hausdorff distance between the output and input boundaries, relative
-      // to the diagonal of the input's bounding box
-      after.surface_error = CGAL::hex_mesh_surface_error(mesh, input_mesh);
+      // Hausdorff distance between the output boundary and the reference
+      // surface (default: the input's boundary), relative to the diagonal of
+      // the reference's bounding box
+      after.surface_error = has_reference ? CGAL::hex_mesh_surface_error(mesh, reference)
+                                          : CGAL::hex_mesh_surface_error(mesh, input_mesh);
 
       CGAL::IO::Hex_mesh_fields fields;
       if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))
@@ -140,6 +224,18 @@ int main(int argc, char** argv)
       }
     }
 
+    // ------------------------------------------------------- check
+    bool check_failed = false;
+    if(options.check && has_output)
+    {
+      const CGAL::Hexahedral_mesh_optimization::Reference_volume_report rep =
+        has_reference ? CGAL::check_hex_mesh_against_reference(mesh, reference)
+                      : CGAL::check_hex_mesh_against_reference(mesh, input_mesh_for_check);
+      check_failed = !rep.passed();
+      if(!options.quiet || check_failed)
+        out << "\nreference-volume check (TetGen):\n" << rep.summary() << std::flush;
+    }
+
     // ------------------------------------------------------- reports
     if(!options.report_json.empty() &&
        !write_text_file(options.report_json, json_report(before, has_output ? &after : nullptr), error))
@@ -147,10 +243,12 @@ int main(int argc, char** argv)
     if(!options.histogram_svg.empty() &&
        !write_text_file(options.histogram_svg, histogram_svg(before, has_output ? &after : nullptr), error))
       return fail(error);
+    if(check_failed)
+      exit_status = 3;
   }
   catch(const std::exception& e)
   {
     return fail(e.what());
   }
-  return 0;
+  return exit_status;
 }

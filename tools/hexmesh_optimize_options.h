@@ -27,7 +27,17 @@ struct Hexmesh_optimize_options
   std::string report_json;   ///< --report FILE.json
   std::string histogram_svg; ///< --histogram-svg FILE.svg
   bool quiet = false;        ///< --quiet: no report on standard output
-  // Optimisation settings go here (with their entries in option_table()).
+  // optimisation (with OUTPUT): the whole pipeline unless --untangle
+  bool untangle_only = false;     ///< --untangle: only remove the inverted elements
+  std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
+  double sharp_angle = 165.;      ///< --sharp-angle DEG
+  double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
+  double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
+  double time_limit = 30.;        ///< --time-limit S, per part (untangling, quality)
+  bool asj_smoothing = true;      ///< --no-asj
+  bool pull_back = true;          ///< --no-pull-back
+  bool relax_surface = true;      ///< --frozen-surface
+  bool check = false;             ///< --check: TetGen reference-volume check of the output
 };
 
 /// One command-line option. `value_name` is nullptr for a flag; `apply`
@@ -75,6 +85,40 @@ inline const std::vector<Option_spec>& option_table()
     {"--histogram-svg", "FILE.svg",
      "draw the scaled Jacobian histogram before (and after, with OUTPUT) as SVG",
      [](O& o, const std::string& v, std::string&) { o.histogram_svg = v; return true; }},
+    {"--untangle", nullptr,
+     "only untangle (edge-angle optimiser, then the barrier stage on what is left); "
+     "default: the whole pipeline (untangle, pull-back, MSJ stages, ASJ smoothing)",
+     [](O& o, const std::string&, std::string&) { o.untangle_only = true; return true; }},
+    {"--target-msj", "X",
+     "stop raising the minimum scaled Jacobian at X (default 1: as high as it gets)",
+     [](O& o, const std::string& v, std::string& e) { return parse_number("--target-msj", v, 0., 1., o.target_msj, e); }},
+    {"--reference", "SURFACE",
+     "triangle surface (.obj .off .ply .stl) the boundary must stay on (default: the input's boundary)",
+     [](O& o, const std::string& v, std::string&) { o.reference = v; return true; }},
+    {"--sharp-angle", "DEG",
+     "dihedral angle below which a boundary edge is a feature (default 165)",
+     [](O& o, const std::string& v, std::string& e) { return parse_number("--sharp-angle", v, 0., 180., o.sharp_angle, e); }},
+    {"--surface-tolerance", "X",
+     "largest surface error the quality stages may cause, relative to the bounding-box diagonal (default 0.005)",
+     [](O& o, const std::string& v, std::string& e) {
+       return parse_number("--surface-tolerance", v, 0., 1., o.surface_tolerance, e);
+     }},
+    {"--time-limit", "SECONDS",
+     "budget of each part (untangling, quality improvement) (default 30)",
+     [](O& o, const std::string& v, std::string& e) { return parse_number("--time-limit", v, 0., 1e7, o.time_limit, e); }},
+    {"--frozen-surface", nullptr,
+     "never relax the surface while untangling (alpha, beta stay at their start value)",
+     [](O& o, const std::string&, std::string&) { o.relax_surface = false; return true; }},
+    {"--no-pull-back", nullptr,
+     "skip the inversion-free pull-back of a relaxed surface",
+     [](O& o, const std::string&, std::string&) { o.pull_back = false; return true; }},
+    {"--no-asj", nullptr,
+     "skip the final smoothing of the average scaled Jacobian",
+     [](O& o, const std::string&, std::string&) { o.asj_smoothing = false; return true; }},
+    {"--check", nullptr,
+     "check the output against the reference volume (TetGen): volume, boundary self-intersection, "
+     "vertices outside; exit status 3 when the check fails",
+     [](O& o, const std::string&, std::string&) { o.check = true; return true; }},
     {"--quiet", nullptr,
      "print only warnings and errors",
      [](O& o, const std::string&, std::string&) { o.quiet = true; return true; }},
@@ -106,7 +150,7 @@ inline std::string usage()
   s << "  -h, --help                  print this help and exit\n"
        "\n"
        "exit status: 0 success, 1 the mesh could not be read, processed or written,\n"
-       "2 bad command line\n";
+       "2 bad command line, 3 --check failed (the output is written all the same)\n";
   return s.str();
 }
 

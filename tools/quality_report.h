@@ -81,7 +81,7 @@ inline void print_quality_report(std::ostream& out, const std::string& title, co
       << "  ASJ         " << format_fixed(q.asj, 4) << "\n";
   if(r.surface_error >= 0.)
     out << "  surface error " << format_fixed(r.surface_error, 5)
-        << " (Hausdorff distance to the input boundary / its bounding-box diagonal)\n";
+        << " (Hausdorff distance to the reference surface, by default the input boundary, / its bounding-box diagonal)\n";
   out << "  scaled Jacobian histogram (bars scale with the count; '#' at least for any count):\n";
   std::size_t max_count = 0;
   for(std::size_t c : q.histogram)

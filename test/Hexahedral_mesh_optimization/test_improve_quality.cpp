@@ -1,0 +1,218 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Quality improvement on meshes of our own: the staged MSJ schedule (stage
+// targets in order, MSJ never lower from one stage to the next, the schedule
+// stopping at the user's target), the never-worse guarantee against an
+// independent recount, the surface staying on the reference, the whole
+// pipeline (untangle + improve) on a tangled grid, and the LCC overload.
+
+#include "test_util.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h>
+#include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
+#include <CGAL/hex_mesh_quality.h>
+#include <CGAL/hex_mesh_surface_error.h>
+#include <CGAL/improve_hex_mesh_quality.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Indexed_hex_mesh<Point> Mesh;
+typedef CGAL::Linear_cell_complex_traits<3, K> LCC_traits;
+typedef CGAL::Linear_cell_complex_for_combinatorial_map<3, 3, LCC_traits> LCC;
+namespace HMO = CGAL::Hexahedral_mesh_optimization;
+namespace HP = CGAL::hex_mesh_parameters;
+
+/// n×n×n grid of unit cubes bent into a cylindrical shell sector
+static Mesh shell(int n, double bend)
+{
+  Mesh m;
+  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
+  for(int k = 0; k <= n; ++k)
+    for(int j = 0; j <= n; ++j)
+      for(int i = 0; i <= n; ++i)
+      {
+        const double r = n + k, a = bend * i / n;
+        m.points.emplace_back(r * std::cos(a), r * std::sin(a), j);
+      }
+  for(int k = 0; k < n; ++k)
+    for(int j = 0; j < n; ++j)
+      for(int i = 0; i < n; ++i)
+        m.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                               id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return m;
+}
+
+static bool on_boundary(std::size_t v, int n)
+{
+  const std::size_t i = v % (n + 1), j = (v / (n + 1)) % (n + 1), k = v / ((n + 1) * (n + 1));
+  return i == 0 || j == 0 || k == 0 || i == std::size_t(n) || j == std::size_t(n) || k == std::size_t(n);
+}
+
+/// interior vertices moved at random (amplitude × edge), the mesh kept valid
+static void perturb_interior(Mesh& m, int n, double amplitude, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  for(std::size_t v = 0; v < m.points.size(); ++v)
+    if(!on_boundary(v, n)) m.points[v] = m.points[v] + amplitude * K::Vector_3(u(rng), u(rng), u(rng));
+}
+
+/// MSJ recomputed from the public per-element function
+static double recount_msj(const Mesh& m)
+{
+  double msj = 2.;
+  for(const auto& h : m.hexahedra)
+  {
+    std::array<Point, 8> c;
+    for(int i = 0; i < 8; ++i) c[i] = m.points[h[i]];
+    msj = (std::min)(msj, CGAL::hex_scaled_jacobian(c));
+  }
+  return msj;
+}
+
+/// records the stages in the order the visitor sees them
+struct Recorder : HMO::Default_optimization_visitor
+{
+  std::vector<HMO::Stage_report> finished;
+  std::vector<std::string> started;
+  void stage_started(const std::string& name, std::size_t) { started.push_back(name); }
+  void stage_finished(const HMO::Stage_report& r) { finished.push_back(r); }
+};
+
+static void test_stage_schedule()
+{
+  const int n = 5;
+  Mesh m = shell(n, 1.2);
+  perturb_interior(m, n, 0.3, 3);
+  const Mesh input = m;
+  const double msj0 = recount_msj(m);
+  HMO_CHECK(msj0 > 0.);
+  HMO_CHECK(msj0 < 0.5);
+
+  Recorder rec;
+  const HMO::Optimization_result r =
+    CGAL::improve_hex_mesh_quality(m, HP::asj_smoothing(false, CGAL::parameters::visitor(std::ref(rec))));
+  // independent recount
+  HMO_CHECK_CLOSE(r.msj_before, msj0, 1e-12);
+  HMO_CHECK_CLOSE(r.msj_after, recount_msj(m), 1e-12);
+  HMO_CHECK(r.inverted_after == 0);
+  HMO_CHECK(r.msj_after > msj0 + 0.2); // a perturbed shell is easy to repair
+  // targets 0.1, 0.2, ... in order, each stage starting where the last one ended
+  std::vector<double> targets;
+  for(const HMO::Stage_report& s : r.stages)
+    if(s.name.rfind("msj>=", 0) == 0) targets.push_back(std::stod(s.name.substr(5)));
+  HMO_CHECK(targets.size() >= 2);
+  double previous = msj0;
+  for(std::size_t i = 0; i < r.stages.size(); ++i)
+  {
+    HMO_CHECK(r.stages[i].msj_after >= previous - 1e-12); // the MSJ never goes down
+    previous = r.stages[i].msj_after;
+  }
+  // multiples of 0.1, increasing (a target the MSJ already passed is skipped)
+  for(std::size_t i = 0; i < targets.size(); ++i)
+    HMO_CHECK_CLOSE(targets[i] * 10., std::round(targets[i] * 10.), 1e-9);
+  for(std::size_t i = 1; i < targets.size(); ++i) HMO_CHECK(targets[i] > targets[i - 1]);
+  HMO_CHECK(targets.front() <= msj0 + 0.1 + 1e-9);
+  // every stage but the last reached its target; the last one ended the schedule
+  for(std::size_t i = 0; i + 1 < targets.size(); ++i)
+  {
+    std::size_t at = 0;
+    for(std::size_t s = 0; s < r.stages.size(); ++s)
+      if(r.stages[s].name.rfind("msj>=", 0) == 0 && at++ == i) HMO_CHECK(r.stages[s].msj_after >= targets[i]);
+  }
+  HMO_CHECK(rec.finished.size() == r.stages.size());
+  HMO_CHECK(rec.started.size() == r.stages.size());
+  // the boundary stays on the input's boundary within the tolerance (+ sampling slack)
+  const double err = CGAL::hex_mesh_surface_error(m, input);
+  HMO_CHECK(err <= 0.005 * 1.5);
+  HMO_CHECK_CLOSE(err, r.surface_error, 1e-6);
+
+  // a target: the schedule stops there and says it succeeded
+  Mesh t = input;
+  const HMO::Optimization_result rt = CGAL::improve_hex_mesh_quality(t, HP::target_msj(0.3, HP::asj_smoothing(false)));
+  HMO_CHECK(rt.success);
+  HMO_CHECK(rt.msj_after >= 0.3);
+  for(const HMO::Stage_report& s : rt.stages)
+    if(s.name.rfind("msj>=", 0) == 0) HMO_CHECK(std::stod(s.name.substr(5)) <= 0.3 + 1e-9);
+
+  // ASJ smoothing on top never lowers the MSJ the stages reached
+  Mesh a = input;
+  const HMO::Optimization_result ra = CGAL::improve_hex_mesh_quality(a, HP::target_msj(0.3));
+  HMO_CHECK(ra.msj_after >= 0.3);
+  HMO_CHECK(ra.asj_after >= rt.asj_after - 1e-12);
+}
+
+static void test_never_worse()
+{
+  // a perfect grid cannot be improved: it comes back as it was, MSJ 1
+  const int n = 3;
+  Mesh g;
+  {
+    auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
+    for(int k = 0; k <= n; ++k)
+      for(int j = 0; j <= n; ++j)
+        for(int i = 0; i <= n; ++i) g.points.emplace_back(i, j, k);
+    for(int k = 0; k < n; ++k)
+      for(int j = 0; j < n; ++j)
+        for(int i = 0; i < n; ++i)
+          g.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                 id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  }
+  const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(g);
+  HMO_CHECK_CLOSE(r.msj_after, 1., 1e-9);
+  HMO_CHECK(r.msj_after >= r.msj_before - 1e-12);
+  HMO_CHECK_CLOSE(recount_msj(g), 1., 1e-9);
+}
+
+static void test_pipeline_on_tangled_mesh()
+{
+  // a shell with interior vertices pushed through their neighbours
+  const int n = 5;
+  Mesh m = shell(n, 1.0);
+  perturb_interior(m, n, 0.9, 11);
+  const std::size_t inverted = CGAL::hex_mesh_quality(m).inverted;
+  HMO_CHECK(inverted > 0);
+  const Mesh input = m;
+  const HMO::Optimization_result r = CGAL::optimize_hex_mesh(m);
+  HMO_CHECK(r.inverted_before == inverted);
+  HMO_CHECK(r.inverted_after == 0);
+  HMO_CHECK(CGAL::hex_mesh_quality(m).inverted == 0);
+  HMO_CHECK(r.msj_after > 0.3);
+  HMO_CHECK_CLOSE(r.msj_after, recount_msj(m), 1e-12);
+  // the untangling stages come first, the quality stages after
+  HMO_CHECK(!r.stages.empty());
+  HMO_CHECK(r.stages.front().name == "edge-angle");
+  HMO_CHECK(r.stages.back().name == "asj");
+  HMO_CHECK(CGAL::hex_mesh_surface_error(m, input) <= 0.01);
+}
+
+static void test_lcc()
+{
+  const int n = 4;
+  Mesh m = shell(n, 1.0);
+  perturb_interior(m, n, 0.4, 5);
+  LCC lcc;
+  std::string why;
+  HMO_CHECK(CGAL::build_linear_cell_complex(m, lcc, &why));
+  const double before = CGAL::hex_mesh_quality(lcc).msj;
+  const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(lcc, HP::target_msj(0.5));
+  HMO_CHECK_CLOSE(r.msj_before, before, 1e-12);
+  HMO_CHECK_CLOSE(CGAL::hex_mesh_quality(lcc).msj, r.msj_after, 1e-12);
+  HMO_CHECK(r.msj_after >= 0.5);
+}
+
+int main(int, char** argv)
+{
+  test_stage_schedule();
+  test_never_worse();
+  test_pipeline_on_tangled_mesh();
+  test_lcc();
+  return hmo_test::report(argv[0]);
+}
