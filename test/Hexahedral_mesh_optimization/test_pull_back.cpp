@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <vector>
@@ -40,6 +41,28 @@ HMO::Hex_mesh_arrays grid(std::size_t nx, std::size_t ny, std::size_t nz,
       for(std::size_t i = 0; i < nx; ++i)
         m.hexes.push_back(HMO::Hex{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
                                    id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return m;
+}
+
+// a grid whose square cross-section [-1,1]² is mapped onto the unit disk
+// ring by ring (uniform angle along each square ring): a closed cylinder
+HMO::Hex_mesh_arrays cylinder(std::size_t n, std::size_t nz, double height)
+{
+  HMO::Hex_mesh_arrays m = grid(n, n, nz, 2., 2., height);
+  for(Vec3& p : m.points)
+  {
+    const double x = p[0] - 1., y = p[1] - 1.;
+    const double r = (std::max)(std::abs(x), std::abs(y));
+    if(r < 1e-12) { p[0] = p[1] = 0.; continue; }
+    double s; // arc-length parameter along the square ring of half-side r, in [0, 8r)
+    if(x >= r - 1e-12)        s = y + r;
+    else if(y >= r - 1e-12)   s = 2 * r + (r - x);
+    else if(x <= -r + 1e-12)  s = 4 * r + (r - y);
+    else                      s = 6 * r + (x + r);
+    const double a = s / (8. * r) * 2. * CGAL_PI - CGAL_PI / 4.;
+    p[0] = r * std::cos(a);
+    p[1] = r * std::sin(a);
+  }
   return m;
 }
 
@@ -90,56 +113,137 @@ void relax(std::vector<Vec3>& p, double amplitude)
   }
 }
 
-void test_grid(HMO::Pull_back_rest_shape rest, int rings)
+struct Case_result
+{
+  HMO::Pull_back_report report;
+  Step_log log;
+  double distance = 0., sj = 0.;
+};
+
+// pulls `relaxed` back onto `ts`, checking every accepted step
+Case_result run_case(const char* name, const HMO::Hex_mesh_arrays& mesh, const HMO::Target_surface& ts,
+                     std::vector<Vec3>& pts, HMO::Pull_back_settings s)
+{
+  const HMO::Hex_mesh_topology topo(mesh);
+  Case_result c;
+  s.on_step = [&](const HMO::Pull_back_step& st) {
+    ++c.log.steps;
+    const double m = min_sj(mesh, pts); // `pts` is the state just accepted
+    if(!(m > 0.)) ++c.log.invalid;
+    c.log.min_sj = (std::min)(c.log.min_sj, m);
+    HMO_CHECK(st.min_sj > 0.);
+    if(std::getenv("PB_TRACE"))
+      std::cout << "  it " << st.iteration << " d " << st.distance << " sj " << st.min_sj << " w " << st.weight
+                << " step " << st.step << std::endl;
+  };
+  CGAL::Real_timer timer;
+  timer.start();
+  c.report = HMO::pull_back_to_target(topo, ts, pts, s);
+  timer.stop();
+  c.distance = max_distance(ts, pts);
+  c.sj = min_sj(mesh, pts);
+  const HMO::Pull_back_report& r = c.report;
+  std::cout << name << ": distance " << r.distance_before << " -> " << r.distance_after
+            << " (mean edge " << r.mean_edge_length << "), reached " << r.reached << ", min SJ " << r.min_sj_before
+            << " -> " << r.min_sj_after << " (lowest accepted " << c.log.min_sj << "), " << r.iterations
+            << " iterations, " << c.log.steps << " steps, " << r.max_free_vertices << " free vertices, "
+            << r.region_growths << " growths, snapped " << r.snapped << ", " << timer.time() << " s" << std::endl;
+  // never an invalid state, and the report tells the truth
+  HMO_CHECK(c.log.invalid == 0);
+  HMO_CHECK(c.sj > 0.);
+  HMO_CHECK_CLOSE(c.sj, r.min_sj_after, 1e-12);
+  HMO_CHECK_CLOSE(c.distance, r.distance_after, 1e-12);
+  HMO_CHECK(r.distance_after <= r.distance_before);
+  HMO_CHECK(r.min_sj_after >= s.min_sj_fraction * r.min_sj_before - 1e-12);
+  return c;
+}
+
+void test_grid(HMO::Pull_back_rest_shape rest, int rings, const char* name)
 {
   const HMO::Hex_mesh_arrays block = grid(12, 12, 12);
-  const HMO::Hex_mesh_topology topo(block);
   const HMO::Target_surface ts(block); // reference: the block's own boundary
-  HMO::Hex_mesh_arrays relaxed = block;
-  relax(relaxed.points, 0.3);
-  const double sj0 = min_sj(block, relaxed.points);
-  HMO_CHECK(sj0 > 0.);
-  const double d0 = max_distance(ts, relaxed.points);
-  HMO_CHECK(d0 > 1.5 / 12.); // more than 1.5 edge lengths off
+  std::vector<Vec3> pts = block.points;
+  relax(pts, 0.3);
+  HMO_CHECK(min_sj(block, pts) > 0.);
+  HMO_CHECK(max_distance(ts, pts) > 1.2 / 12.); // more than 1.2 edge lengths off
 
   HMO::Pull_back_settings s;
   s.rest_shape = rest;
   s.region_rings = rings;
-  Step_log log;
-  s.on_step = [&](const HMO::Pull_back_step& st) {
-    ++log.steps;
-    const double m = min_sj(block, relaxed.points);
-    if(!(m > 0.)) ++log.invalid;
-    log.min_sj = (std::min)(log.min_sj, m);
-    HMO_CHECK_CLOSE(st.min_sj, st.min_sj, 0.); // finite
-  };
-  CGAL::Real_timer timer;
-  timer.start();
-  std::vector<Vec3>& pts = relaxed.points;
-  const HMO::Pull_back_report r = HMO::pull_back_to_target(topo, ts, pts, s);
-  timer.stop();
-  const double d1 = max_distance(ts, pts);
-  const double sj1 = min_sj(block, pts);
-  std::cout << "grid 12^3, rest " << (rest == HMO::Pull_back_rest_shape::ideal_cube ? "ideal" : "initial")
-            << ", rings " << rings << ": distance " << r.distance_before << " -> " << r.distance_after
-            << " (edge " << r.mean_edge_length << "), min SJ " << r.min_sj_before << " -> " << r.min_sj_after
-            << " (lowest on the way " << log.min_sj << "), " << r.iterations << " iterations, "
-            << log.steps << " steps, " << r.max_free_vertices << " free vertices, growths " << r.region_growths
-            << ", snapped " << r.snapped << ", " << timer.time() << " s (solver " << r.seconds << " s, CG " << r.conjugate_gradient_iterations << ")" << std::endl;
-  HMO_CHECK(r.reached);
-  HMO_CHECK(d1 <= 1e-3 * r.mean_edge_length);
-  HMO_CHECK_CLOSE(d1, r.distance_after, 1e-12);
-  HMO_CHECK(log.steps > 0);
-  HMO_CHECK(log.invalid == 0);
-  HMO_CHECK(sj1 > 0.);
-  HMO_CHECK_CLOSE(sj1, r.min_sj_after, 1e-12);
-  HMO_CHECK(log.min_sj > 0.);
+  const Case_result c = run_case(name, block, ts, pts, s);
+  HMO_CHECK(c.report.reached);
+  HMO_CHECK(c.distance <= 1e-3 * c.report.mean_edge_length);
+  HMO_CHECK(c.log.steps > 0);
+  HMO_CHECK(c.log.min_sj > 0.);
+  // the block's corners are back at the cube's corners
+  for(std::size_t v : ts.boundary().vertices)
+    if(ts.vertex_class(v) == Vertex_class::corner)
+      HMO_CHECK(HMO::norm(pts[v] - block.points[v]) < 1e-6);
+}
+
+// a curved block: a cylinder (two closed feature circles, no corner) whose
+// boundary is twisted, swollen and squeezed
+void test_cylinder()
+{
+  const HMO::Hex_mesh_arrays cyl = cylinder(8, 8, 1.5);
+  const HMO::Target_surface ts(cyl);
+  HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::corner) == 0);
+  HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::sharp) > 0);
+  std::vector<Vec3> pts = cyl.points;
+  for(Vec3& p : pts)
+  {
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1]);
+    const double a = std::atan2(p[1], p[0]) + 0.25 * (p[2] / 1.5) * r;
+    const double f = 1. + 0.12 * r * std::sin(2. * a) * std::sin(CGAL_PI * p[2] / 1.5);
+    p = Vec3{f * r * std::cos(a), f * r * std::sin(a), p[2] * (1. + 0.06 * r * std::cos(a))};
+  }
+  HMO_CHECK(min_sj(cyl, pts) > 0.);
+  const double d0 = max_distance(ts, pts);
+  HMO_CHECK(d0 > 0.1);
+  HMO::Pull_back_settings s;
+  const Case_result c = run_case("cylinder 8x8x8", cyl, ts, pts, s);
+  HMO_CHECK(c.report.reached);
+  HMO_CHECK(c.distance <= 1e-3 * c.report.mean_edge_length);
+  // on the reference: radius 1 on the side, z in {0, 1.5} on the caps
+  for(std::size_t v : ts.boundary().vertices)
+  {
+    const double r = std::sqrt(pts[v][0] * pts[v][0] + pts[v][1] * pts[v][1]);
+    const double off = (std::min)({std::abs(r - 1.), std::abs(pts[v][2]), std::abs(pts[v][2] - 1.5)});
+    HMO_CHECK(off < 0.02); // the reference is a polyhedral cylinder: chords are within 1 - cos(π/32)
+  }
+}
+
+// A target that cannot be reached without inverting: the reference of a single
+// hex whose vertex 0 is pushed into the element, past the plane of its
+// neighbours 1, 3, 4. The target positions invert the element; vertex 0 (a
+// regular vertex of the folded reference) cannot reach it while 2, 5, 6, 7
+// (corners) stay at their anchors.
+void test_unreachable()
+{
+  const HMO::Hex_mesh_arrays cube = grid(1, 1, 1);
+  HMO::Hex_mesh_arrays dented = cube;
+  dented.points[0] = Vec3{0.6, 0.6, 0.6};
+  const HMO::Target_surface ts(dented);
+  HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::corner) == 4); // 2, 5, 6, 7: fixed anchors
+  std::vector<Vec3> target = cube.points;
+  ts.target_points(target);
+  HMO_CHECK(min_sj(cube, target) < 0.); // the target itself is inverted
+  std::vector<Vec3> pts = cube.points;
+  HMO::Pull_back_settings s;
+  const Case_result c = run_case("unreachable corner", cube, ts, pts, s);
+  HMO_CHECK(!c.report.reached);
+  HMO_CHECK(c.log.min_sj > 0.);
+  HMO_CHECK(c.report.distance_after < c.report.distance_before); // went part of the way
+  HMO_CHECK(c.report.distance_after > 1e-3 * c.report.mean_edge_length);
+  HMO_CHECK(c.report.min_sj_after >= 0.5 * c.report.min_sj_before - 1e-12);
 }
 
 int main(int, char** argv)
 {
-  test_grid(HMO::Pull_back_rest_shape::ideal_cube, 3);
-  test_grid(HMO::Pull_back_rest_shape::initial_element, 3);
-  test_grid(HMO::Pull_back_rest_shape::ideal_cube, -1);
+  test_grid(HMO::Pull_back_rest_shape::ideal_cube, 3, "grid 12^3, ideal rest, 3 rings");
+  test_grid(HMO::Pull_back_rest_shape::initial_element, 3, "grid 12^3, initial rest, 3 rings");
+  test_grid(HMO::Pull_back_rest_shape::ideal_cube, -1, "grid 12^3, ideal rest, whole mesh");
+  test_cylinder();
+  test_unreachable();
   return hmo_test::report(argv[0]);
 }

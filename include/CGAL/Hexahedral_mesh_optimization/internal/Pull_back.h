@@ -149,9 +149,12 @@ struct Pull_back_settings
   Pull_back_rest_shape rest_shape = Pull_back_rest_shape::ideal_cube;
   /// the SLIM proxy system: preconditioned conjugate gradient (default) or a sparse LDLᵀ
   Pull_back_linear_solver linear_solver = Pull_back_linear_solver::conjugate_gradient;
+  /// cap on the SLIM weights w² (4 at a rest frame): keeps the proxy system
+  /// conditioned near degenerate frames (the line search guards validity)
+  double max_slim_weight = 1e6;
   /// relative residual of the conjugate gradient
   double cg_tolerance = 1e-8;
-  int max_iterations = 300;
+  int max_iterations = 50;
   /// reached when every boundary vertex is within tolerance × mean edge length of its anchor
   double tolerance = 1e-3;
   /// rings of hexes around the displaced boundary vertices; < 0: the whole mesh
@@ -160,14 +163,18 @@ struct Pull_back_settings
   double initial_weight = 1.;
   double max_weight = 1e8;
   double weight_growth = 4.;
+  /// the weight grows after an iteration whose accepted step is at least this fraction of the SLIM direction
+  double weight_growth_min_step = 0.25;
   /// τ: tangential stiffness of regular / sharp constraints relative to the normal one
   double tangential_weight = 1e-2;
-  /// floor on the scaled Jacobian of the optimised hexes: this fraction of their minimum at the start
+  /// No accepted state has a minimum scaled Jacobian below this fraction of
+  /// the input's: the floor starts at 1 × (never lower the minimum) and is
+  /// halved, down to this value, only when the run stalls above it.
   double min_sj_fraction = 0.5;
   /// snap the boundary exactly onto the anchors at the end, when valid
   bool snap = true;
   /// iterations without a 1 % gain of the distance at maximal weight before the region grows / the run ends
-  int stall_iterations = 8;
+  int stall_iterations = 4;
   /// called after every accepted step (never with an invalid mesh)
   std::function<void(const Pull_back_step&)> on_step;
 };
@@ -220,6 +227,7 @@ public:
     rep.min_sj_after = rep.min_sj_before;
     const double tol = m_s.tolerance * m_mean_edge;
     for(double d : dist) if(d > tol) ++rep.displaced_vertices;
+    m_snap_floor = (std::max)(0., rep.min_sj_before);
     if(rep.distance_before <= tol || hexes.empty())
     {
       rep.reached = true;
@@ -235,27 +243,35 @@ public:
       return rep;
     }
 
+    // every accepted state is valid; keep the one closest to the target
+    // (score: max + mean distance, so that reachable vertices still count
+    // when a few cannot reach)
+    // the SJ floor starts at the input's minimum (never lower it) and is
+    // relaxed towards min_sj_fraction × that minimum only when the run stalls
+    double fraction = (std::max)(1., m_s.min_sj_fraction);
+    m_floor = (std::max)(0., fraction * rep.min_sj_before);
     std::vector<Vec3> best = points;
-    double best_dist = rep.distance_before;
+    double best_score = rep.distance_before + m_mean_dist;
     double w = m_s.initial_weight;
     int rings = m_s.region_rings;
-    int iteration = 0;
-    for(int growth = 0; ; ++growth)
+    int iteration = 0, growths = 0;
+    for(;;)
     {
       build_region(points, dist, tol, rings);
       rep.max_free_vertices = (std::max)(rep.max_free_vertices, m_free.size());
       if(m_free.empty()) break;
       int since_gain = 0;
-      double ref_dist = best_dist;
+      double ref_score = best_score;
+      double d = rep.distance_before;
       while(iteration < m_s.max_iterations)
       {
         ++iteration;
         double step = 0.;
         const bool moved = iterate(points, w, step);
-        const double d = distances(points, dist);
-        if(moved && d < best_dist)
+        d = distances(points, dist);
+        if(moved && d + m_mean_dist < best_score)
         {
-          best_dist = d;
+          best_score = d + m_mean_dist;
           best = points;
         }
         if(moved && m_s.on_step)
@@ -266,24 +282,40 @@ public:
           m_s.on_step(ps);
         }
         if(d <= tol) break;
-        if(!moved || step >= 0.5) w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
-        if(best_dist < 0.99 * ref_dist) { ref_dist = best_dist; since_gain = 0; }
-        else if(w >= m_s.max_weight && ++since_gain >= m_s.stall_iterations) break;
+        if(!moved || step >= m_s.weight_growth_min_step) w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
+        if(best_score < 0.99 * ref_score) { ref_score = best_score; since_gain = 0; }
+        else if(++since_gain >= m_s.stall_iterations)
+        { // no progress: more weight, or, at the maximal weight, a stall
+          if(w >= m_s.max_weight) break;
+          w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
+          since_gain = 0;
+        }
       }
-      if(best_dist <= tol || iteration >= m_s.max_iterations) break;
-      if(rings < 0 || growth >= m_s.max_region_growths || m_hexes.size() == hexes.size()) break;
-      rings = (std::max)(1, 2 * rings);
-      ++rep.region_growths;
+      if(d <= tol || iteration >= m_s.max_iterations) break;
+      // stalled: grow the region first, then relax the SJ floor
+      if(rings >= 0 && growths < m_s.max_region_growths && m_hexes.size() < hexes.size())
+      {
+        rings = (std::max)(1, 2 * rings);
+        ++growths;
+        ++rep.region_growths;
+      }
+      else if(fraction > m_s.min_sj_fraction)
+      {
+        fraction = (std::max)(m_s.min_sj_fraction, 0.5 * fraction);
+        m_floor = (std::max)(0., fraction * rep.min_sj_before);
+      }
+      else
+        break;
       points = best;
       distances(points, dist);
       w = (std::max)(m_s.initial_weight, w * 1e-2);
     }
+    m_snap_floor = m_floor;
     points = best;
     rep.iterations = iteration;
+    try_snap(points, rep);
     rep.distance_after = distances(points, dist);
     rep.reached = rep.distance_after <= tol;
-    if(rep.reached) try_snap(points, rep);
-    rep.distance_after = distances(points, dist);
     rep.min_sj_after = global_min_sj(points);
     rep.conjugate_gradient_iterations = m_cg_iterations;
     rep.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -343,12 +375,14 @@ private:
   {
     m_ts.update_constraints(points, m_bc);
     dist.assign(points.size(), 0.);
-    double m = 0.;
+    double m = 0., sum = 0.;
     for(std::size_t v : m_ts.boundary().vertices)
     {
       dist[v] = norm(points[v] - m_bc[v].anchor);
       m = (std::max)(m, dist[v]);
+      sum += dist[v];
     }
+    m_mean_dist = sum / double((std::max)(std::size_t(1), m_ts.boundary().vertices.size()));
     return m;
   }
 
@@ -453,10 +487,6 @@ private:
     }
     if(m_s.linear_solver == Pull_back_linear_solver::simplicial_ldlt)
       m_solver.analyzePattern(m_H);
-    // the SJ floor of this region
-    double msj = std::numeric_limits<double>::max();
-    for(std::size_t h : m_hexes) msj = (std::min)(msj, scaled_jacobian(corners(points, hexes[h])));
-    m_floor = (std::max)(0., m_s.min_sj_fraction * msj);
   }
 
   // ---------------------------------------------------------------- energy
@@ -514,30 +544,44 @@ private:
       for(int s = 0; s < 9; ++s)
       {
         const M3 f = frame(p, s) * m_rinv[i][s];
-        Eigen::JacobiSVD<M3> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        M3 u = svd.matrixU(), vv = svd.matrixV();
-        V3 sig = svd.singularValues();
-        if(u.determinant() < 0.) { u.col(2) *= -1.; sig[2] *= -1.; }
-        if(vv.determinant() < 0.) { vv.col(2) *= -1.; sig[2] *= -1.; }
+        // SLIM weights from the eigen-decomposition FᵀF = V Σ² Vᵀ (closed
+        // form, no SVD): with U Σ = F V, WᵀW = U diag(w²) Uᵀ = F V diag(w²/σ²) Vᵀ Fᵀ
+        // and WᵀW R = U diag(w²) Vᵀ = F V diag(w²/σ) Vᵀ, R = U Vᵀ the closest rotation
+        // (a nearly degenerate F, whose small σ the closed form loses, goes
+        // through a Jacobi SVD instead)
+        Eigen::SelfAdjointEigenSolver<M3> es;
+        es.computeDirect(f.transpose() * f);
+        M3 vv = es.eigenvectors();
+        V3 sig;
+        if(es.eigenvalues()[0] > 1e-6 * es.eigenvalues()[2])
+          for(int k = 0; k < 3; ++k) sig[k] = std::sqrt(es.eigenvalues()[k]);
+        else
+        {
+          Eigen::JacobiSVD<M3> svd(f, Eigen::ComputeFullV);
+          vv = svd.matrixV();
+          sig = svd.singularValues();
+        }
         double scale = 1.;
         if(m_s.energy == Pull_back_energy::exp_symmetric_dirichlet)
         {
           const double sd = f.squaredNorm() + f.inverse().squaredNorm();
           scale = m_s.exp_factor * std::exp(m_s.exp_factor * (sd - 6.));
         }
-        V3 w2;
+        V3 a, b;
         for(int k = 0; k < 3; ++k)
         {
-          const double x = (std::max)(sig[k], 1e-8);
-          w2[k] = scale * (x + 1.) * (x * x + 1.) / (x * x * x);
+          const double x = (std::max)(sig[k], 1e-12);
+          const double w2 = (std::min)(m_s.max_slim_weight, scale * (x + 1.) * (x * x + 1.) / (x * x * x));
+          a[k] = w2 / (x * x);
+          b[k] = w2 / x;
         }
-        const M3 ww = u * w2.asDiagonal() * u.transpose(); // WᵀW
-        const M3 rot = u * vv.transpose();
+        const M3 fv = f * vv;
+        const M3 ww = fv * a.asDiagonal() * fv.transpose(); // WᵀW
+        const M3 wwr = fv * b.asDiagonal() * vv.transpose(); // WᵀW R
         // D = G R⁻¹ (8×3)
         Eigen::Matrix<double, 8, 3> g;
         for(int a = 0; a < 8; ++a) for(int k = 0; k < 3; ++k) g(a, k) = t.g[s][a][k];
         const Eigen::Matrix<double, 8, 3> dm = g * m_rinv[i][s];
-        const M3 wwr = ww * rot;
         const double vol = 1. / 9.;
         for(int a = 0; a < 8; ++a)
         {
@@ -624,7 +668,7 @@ private:
       if(!(e1 < e0)) continue;
       double msj = std::numeric_limits<double>::max();
       for(std::size_t h : m_hexes) msj = (std::min)(msj, scaled_jacobian(corners(trial, hexes[h])));
-      if(!(msj > m_floor) || !(msj > 0.)) continue;
+      if(!(msj >= m_floor) || !(msj > 0.)) continue;
       for(std::size_t v : m_free) points[v] = trial[v];
       step = alpha;
       m_last_min_sj = msj;
@@ -690,31 +734,50 @@ private:
   }
 
   // ---------------------------------------------------------------- snap
+  // Moves the boundary vertices exactly onto their anchors where that keeps
+  // every hex above the floor: all at once if possible, else vertex by vertex
+  // (a few sweeps, full move then half, quarter).
   void try_snap(std::vector<Vec3>& points, Pull_back_report& rep)
   {
     if(!m_s.snap) return;
     const auto& hexes = m_topo.hexes();
-    m_ts.update_constraints(points, m_bc);
-    std::vector<char> touched(m_topo.number_of_hexes(), 0);
-    std::vector<std::size_t> hx;
-    double msj0 = std::numeric_limits<double>::max();
-    for(std::size_t v : m_ts.boundary().vertices)
+    const double floor = m_snap_floor;
+    auto local_ok = [&](std::size_t v) {
       for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-        if(!touched[c->hex]) { touched[c->hex] = 1; hx.push_back(c->hex); }
-    for(std::size_t h : hx) msj0 = (std::min)(msj0, scaled_jacobian(corners(points, hexes[h])));
-    const double floor = (std::max)(0., m_s.min_sj_fraction * msj0);
-    std::vector<Vec3> trial = points;
-    for(double a = 1.; a > 0.1; a *= 0.5)
-    {
-      for(std::size_t v : m_ts.boundary().vertices) trial[v] = points[v] + a * (m_bc[v].anchor - points[v]);
-      double msj = std::numeric_limits<double>::max();
-      for(std::size_t h : hx) msj = (std::min)(msj, scaled_jacobian(corners(trial, hexes[h])));
-      if(msj > floor && msj > 0.)
       {
-        points = trial;
-        rep.snapped = (a == 1.);
-        return;
+        const double sj = scaled_jacobian(corners(points, hexes[c->hex]));
+        if(!(sj >= floor) || !(sj > 0.)) return false;
       }
+      return true;
+    };
+    m_ts.update_constraints(points, m_bc);
+    const std::vector<std::size_t>& bv = m_ts.boundary().vertices;
+    {
+      const std::vector<Vec3> saved = points;
+      for(std::size_t v : bv) points[v] = m_bc[v].anchor;
+      bool ok = true;
+      for(std::size_t v : bv) if(!(ok = local_ok(v))) break;
+      if(ok) { rep.snapped = true; return; }
+      points = saved;
+    }
+    for(int sweep = 0; sweep < 3; ++sweep)
+    {
+      m_ts.update_constraints(points, m_bc);
+      bool all = true;
+      for(std::size_t v : bv)
+      {
+        const Vec3 p = points[v];
+        if(squared_norm(p - m_bc[v].anchor) == 0.) continue;
+        bool done = false;
+        for(double a = 1.; a > 0.2 && !done; a *= 0.5)
+        {
+          points[v] = p + a * (m_bc[v].anchor - p);
+          done = local_ok(v);
+          if(done && a < 1.) all = false;
+        }
+        if(!done) { points[v] = p; all = false; }
+      }
+      if(all) { rep.snapped = true; return; }
     }
   }
 
@@ -733,7 +796,7 @@ private:
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double> > m_solver;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Pull_back_block_jacobi> m_cg;
   long m_cg_iterations = 0;
-  double m_floor = 0., m_w = 1., m_last_min_sj = 0.;
+  double m_floor = 0., m_snap_floor = 0., m_w = 1., m_last_min_sj = 0., m_mean_dist = 0.;
 };
 
 /// Pulls the boundary of a valid hex mesh back onto the target surface
