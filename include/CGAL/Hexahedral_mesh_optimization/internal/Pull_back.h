@@ -260,7 +260,8 @@ public:
       build_region(points, dist, tol, rings);
       rep.max_free_vertices = (std::max)(rep.max_free_vertices, m_free.size());
       if(m_free.empty()) break;
-      int since_gain = 0;
+      int since_gain = 0, floor_stall = 0;
+      bool floor_stalled = false;
       double ref_score = best_score;
       double d = rep.distance_before;
       while(iteration < m_s.max_iterations)
@@ -282,6 +283,9 @@ public:
           m_s.on_step(ps);
         }
         if(d <= tol) break;
+        // the SJ floor, not the energy, keeps cutting the step: relax it
+        floor_stall = (m_floor_blocked && step < 0.05) ? floor_stall + 1 : 0;
+        if(floor_stall >= 2 && fraction > m_s.min_sj_fraction) { floor_stalled = true; break; }
         if(!moved || step >= m_s.weight_growth_min_step) w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
         if(best_score < 0.99 * ref_score) { ref_score = best_score; since_gain = 0; }
         else if(++since_gain >= m_s.stall_iterations)
@@ -292,20 +296,19 @@ public:
         }
       }
       if(d <= tol || iteration >= m_s.max_iterations) break;
-      // stalled: grow the region first, then relax the SJ floor
-      if(rings >= 0 && growths < m_s.max_region_growths && m_hexes.size() < hexes.size())
-      {
-        rings = (std::max)(1, 2 * rings);
-        ++growths;
-        ++rep.region_growths;
-      }
-      else if(fraction > m_s.min_sj_fraction)
+      // stalled: relax the SJ floor if it is what blocks, else grow the region
+      // first, then relax the floor
+      const bool can_grow = rings >= 0 && growths < m_s.max_region_growths && m_hexes.size() < hexes.size();
+      if(floor_stalled || (!can_grow && fraction > m_s.min_sj_fraction))
       {
         fraction = (std::max)(m_s.min_sj_fraction, 0.5 * fraction);
         m_floor = (std::max)(0., fraction * rep.min_sj_before);
+        continue; // same region, same weight, from the current state
       }
-      else
-        break;
+      if(!can_grow) break;
+      rings = (std::max)(1, 2 * rings);
+      ++growths;
+      ++rep.region_growths;
       points = best;
       distances(points, dist);
       w = (std::max)(m_s.initial_weight, w * 1e-2);
@@ -528,6 +531,7 @@ private:
   // one SLIM iteration; false when no step could be taken
   bool iterate(std::vector<Vec3>& points, double w, double& step)
   {
+    m_floor_blocked = false;
     const auto& hexes = m_topo.hexes();
     m_w = w;
     // m_bc holds the anchors of the current positions (distances() was called last)
@@ -668,7 +672,7 @@ private:
       if(!(e1 < e0)) continue;
       double msj = std::numeric_limits<double>::max();
       for(std::size_t h : m_hexes) msj = (std::min)(msj, scaled_jacobian(corners(trial, hexes[h])));
-      if(!(msj >= m_floor) || !(msj > 0.)) continue;
+      if(!(msj >= m_floor) || !(msj > 0.)) { m_floor_blocked = true; continue; }
       for(std::size_t v : m_free) points[v] = trial[v];
       step = alpha;
       m_last_min_sj = msj;
@@ -796,6 +800,7 @@ private:
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double> > m_solver;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Pull_back_block_jacobi> m_cg;
   long m_cg_iterations = 0;
+  bool m_floor_blocked = false;
   double m_floor = 0., m_snap_floor = 0., m_w = 1., m_last_min_sj = 0., m_mean_dist = 0.;
 };
 
