@@ -183,7 +183,8 @@ struct Pull_back_settings
   double min_sj_fraction = 0.5;
   /// snap the boundary exactly onto the anchors at the end, when valid
   bool snap = true;
-  /// iterations without a 1 % gain of the distance at maximal weight before the region grows / the run ends
+  /// iterations without a 1 % gain of (max + mean) distance: the weight grows ×`weight_growth`;
+  /// at `max_weight`, a stall (the region grows, else the SJ floor is relaxed, else the run ends)
   int stall_iterations = 4;
   /// called after every accepted step (never with an invalid mesh)
   std::function<void(const Pull_back_step&)> on_step;
