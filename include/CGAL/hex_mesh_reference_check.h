@@ -8,6 +8,7 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Reference_volume_report.h>
+#include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Reference_volume_check.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
@@ -21,46 +22,6 @@
 #include <type_traits>
 
 namespace CGAL {
-namespace hex_mesh_internal_np {
-
-enum volume_tolerance_t { volume_tolerance };
-enum outside_tolerance_t { outside_tolerance };
-
-} // namespace hex_mesh_internal_np
-
-namespace hex_mesh_parameters {
-
-// the same pattern as the parameters of <CGAL/Hexahedral_mesh_optimization/parameters.h>
-#define CGAL_HMO_ADD_CHECK_PARAMETER(NAME)                                                 \
-  template <class K, class T, class Tag, class Base>                                       \
-  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,                 \
-                                  CGAL::Named_function_parameters<T, Tag, Base> >          \
-  NAME(const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& base)              \
-  {                                                                                        \
-    return CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,        \
-                                           CGAL::Named_function_parameters<T, Tag, Base> >(k, base); \
-  }                                                                                        \
-  template <class K>                                                                       \
-  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,                 \
-                                  CGAL::parameters::Default_named_parameters>              \
-  NAME(const K& k)                                                                         \
-  {                                                                                        \
-    return NAME(k, CGAL::parameters::default_values());                                    \
-  }
-
-/// largest relative difference between the volume of the hex mesh and the
-/// volume bounded by the reference that `check_hex_mesh_against_reference()`
-/// accepts (default 0.01)
-CGAL_HMO_ADD_CHECK_PARAMETER(volume_tolerance)
-/// distance, as a fraction of the reference's bounding-box diagonal, beyond
-/// which a vertex outside the reference volume makes
-/// `check_hex_mesh_against_reference()` fail (default 0.01)
-CGAL_HMO_ADD_CHECK_PARAMETER(outside_tolerance)
-
-#undef CGAL_HMO_ADD_CHECK_PARAMETER
-
-} // namespace hex_mesh_parameters
-
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 

@@ -35,6 +35,57 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.reference_triangles = u.reference_triangles;
 }
 
+/// the body of `improve_hex_mesh_quality()` (`untangle_first` false) and of
+/// `optimize_hex_mesh()` (true: the untangler runs first when the mesh has
+/// inverted elements, and both results are merged)
+template <class HexMesh, class NamedParameters>
+Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& np, bool untangle_first)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+
+  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
+  Default_optimization_visitor default_visitor;
+  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
+  typedef typename std::remove_reference<decltype(visitor)>::type Visitor;
+
+  Untangle_settings u;
+  std::vector<Vec3> ref_points;
+  std::vector<Tri> ref_tris;
+  read_untangle_parameters(np, gt, u, ref_points, ref_tris);
+  Quality_settings s;
+  read_quality_parameters(np, u, s);
+
+  Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const Hex_mesh_arrays original = arrays;
+  Optimization_result result;
+  const bool untangle = untangle_first && quality_statistics(arrays).inverted > 0;
+  if(untangle)
+  {
+    Hex_mesh_untangler<Visitor> untangler(u, visitor);
+    result = untangler.run(arrays);
+  }
+  Hex_mesh_quality_improver<Visitor> improver(s, visitor);
+  const Optimization_result q = improver.run(arrays, original);
+  if(untangle)
+  {
+    result.stages.insert(result.stages.end(), q.stages.begin(), q.stages.end());
+    result.inverted_after = q.inverted_after;
+    result.msj_after = q.msj_after;
+    result.asj_after = q.asj_after;
+    result.surface_error = q.surface_error;
+    result.seconds += q.seconds;
+    result.kept_input = result.kept_input && q.kept_input;
+    result.success = q.success;
+  }
+  else
+    result = q;
+  Adapter::write_back(arrays, mesh, gt);
+  return result;
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 
@@ -137,29 +188,7 @@ template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result
 improve_hex_mesh_quality(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  namespace HMO = Hexahedral_mesh_optimization;
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-
-  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
-  HMO::Default_optimization_visitor default_visitor;
-  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
-
-  HMO::internal::Untangle_settings u;
-  std::vector<HMO::internal::Vec3> ref_points;
-  std::vector<HMO::internal::Tri> ref_tris;
-  HMO::internal::read_untangle_parameters(np, gt, u, ref_points, ref_tris);
-  HMO::internal::Quality_settings s;
-  HMO::internal::read_quality_parameters(np, u, s);
-
-  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
-  const HMO::internal::Hex_mesh_arrays original = arrays;
-  HMO::internal::Hex_mesh_quality_improver<typename std::remove_reference<decltype(visitor)>::type> improver(s, visitor);
-  const HMO::Optimization_result result = improver.run(arrays, original);
-  Adapter::write_back(arrays, mesh, gt);
-  return result;
+  return Hexahedral_mesh_optimization::internal::run_quality_pipeline(mesh, np, false);
 }
 
 /*!
@@ -177,51 +206,7 @@ template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result
 optimize_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  namespace HMO = Hexahedral_mesh_optimization;
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-
-  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
-  HMO::Default_optimization_visitor default_visitor;
-  auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
-  typedef typename std::remove_reference<decltype(visitor)>::type Visitor;
-
-  HMO::internal::Untangle_settings u;
-  std::vector<HMO::internal::Vec3> ref_points;
-  std::vector<HMO::internal::Tri> ref_tris;
-  HMO::internal::read_untangle_parameters(np, gt, u, ref_points, ref_tris);
-  HMO::internal::Quality_settings s;
-  HMO::internal::read_quality_parameters(np, u, s);
-
-  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
-  const HMO::internal::Hex_mesh_arrays original = arrays;
-  HMO::Optimization_result result;
-  bool untangled = false;
-  if(HMO::internal::quality_statistics(arrays).inverted > 0)
-  {
-    HMO::internal::Hex_mesh_untangler<Visitor> untangler(u, visitor);
-    result = untangler.run(arrays);
-    untangled = true;
-  }
-  HMO::internal::Hex_mesh_quality_improver<Visitor> improver(s, visitor);
-  const HMO::Optimization_result q = improver.run(arrays, original);
-  if(untangled)
-  {
-    result.stages.insert(result.stages.end(), q.stages.begin(), q.stages.end());
-    result.inverted_after = q.inverted_after;
-    result.msj_after = q.msj_after;
-    result.asj_after = q.asj_after;
-    result.surface_error = q.surface_error;
-    result.seconds += q.seconds;
-    result.kept_input = result.kept_input && q.kept_input;
-    result.success = q.success;
-  }
-  else
-    result = q;
-  Adapter::write_back(arrays, mesh, gt);
-  return result;
+  return Hexahedral_mesh_optimization::internal::run_quality_pipeline(mesh, np, true);
 }
 
 } // namespace CGAL

@@ -38,6 +38,8 @@ enum surface_tolerance_t { surface_tolerance };
 enum pull_back_t { pull_back };
 enum asj_smoothing_t { asj_smoothing };
 enum edge_angle_stages_t { edge_angle_stages };
+enum volume_tolerance_t { volume_tolerance };
+enum outside_tolerance_t { outside_tolerance };
 
 } // namespace hex_mesh_internal_np
 
@@ -90,6 +92,14 @@ CGAL_HMO_ADD_PARAMETER(pull_back)
 CGAL_HMO_ADD_PARAMETER(asj_smoothing)
 /// whether each MSJ stage starts with the paper's edge-angle optimiser (default true)
 CGAL_HMO_ADD_PARAMETER(edge_angle_stages)
+/// largest relative difference between the volume of the hex mesh and the
+/// volume bounded by the reference that `check_hex_mesh_against_reference()`
+/// accepts (default 0.01)
+CGAL_HMO_ADD_PARAMETER(volume_tolerance)
+/// distance, as a fraction of the reference's bounding-box diagonal, beyond
+/// which a vertex outside the reference volume makes
+/// `check_hex_mesh_against_reference()` fail (default 0.01)
+CGAL_HMO_ADD_PARAMETER(outside_tolerance)
 
 #undef CGAL_HMO_ADD_PARAMETER
 

@@ -41,9 +41,8 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Asj_smoothing.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_untangler.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Ideal_angles.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_setup.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pull_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
@@ -54,7 +53,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -143,14 +141,7 @@ public:
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
     const Target_surface ts(mesh, target_points, target_tris, tsp);
-    std::vector<Vec3> omega = mesh.points;
-    ts.target_points(omega);
-    std::set<std::pair<std::size_t, std::size_t> > sharp;
-    for(std::size_t e = 0; e < ts.boundary().edges.size(); ++e)
-      if(ts.sharp_edges()[e]) sharp.insert({ts.boundary().edges[e][0], ts.boundary().edges[e][1]});
-    const Ideal_angles ideal(topo, boundary_edge_angles(topo, omega, [&](std::size_t a, std::size_t b) {
-                               return sharp.count(std::minmax(a, b)) != 0;
-                             }));
+    const Ideal_angles ideal = ideal_angles_on_target(topo, ts, mesh.points);
 
     // ---- stage: pull-back, when the boundary is off the target surface
     if(m_s.pull_back && q0.inverted == 0 && scaled_error(mesh, reference, nz) > m_s.surface_tolerance)
@@ -192,14 +183,7 @@ public:
     for(Vec3& p : mesh.points) p = nz.undo(p);
 
     // ---- never make the mesh worse
-    Quality_statistics q1 = quality_statistics(mesh);
-    if(q1.inverted > q0.inverted || (q1.inverted == q0.inverted && q1.msj < q0.msj))
-    {
-      mesh = input;
-      q1 = q0;
-      res.kept_input = true;
-    }
-    res.inverted_after = q1.inverted; res.msj_after = q1.msj; res.asj_after = q1.asj;
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
     res.success = q1.inverted == 0 && q1.msj >= (std::min)(m_s.target_msj, 1.) - 1e-12;
     res.surface_error = relative_surface_error(mesh, reference);
     res.seconds = seconds_since(start);

@@ -27,13 +27,13 @@
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Barrier_untangler.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_setup.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 
 #include <chrono>
 #include <memory>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -56,28 +56,6 @@ struct Untangle_settings
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
 };
-
-/// mean edge length 0.025 about the centroid: p' = s (p - c)
-struct Normalization
-{
-  double scale = 1.;
-  Vec3 centre = {0., 0., 0.};
-  Vec3 apply(const Vec3& p) const { return scale * (p - centre); }
-  Vec3 undo(const Vec3& p) const { return (1. / scale) * p + centre; }
-};
-
-inline Normalization normalization(const Hex_mesh_topology& topo, const std::vector<Vec3>& points)
-{
-  Normalization n;
-  double sum = 0.;
-  for(std::size_t e = 0; e < topo.number_of_edges(); ++e)
-    sum += norm(points[topo.edge(e)[0]] - points[topo.edge(e)[1]]);
-  const double mean = sum / (std::max)(std::size_t(1), topo.number_of_edges());
-  n.scale = mean > 0. ? 0.025 / mean : 1.;
-  for(const Vec3& p : points) n.centre = n.centre + p;
-  n.centre = (1. / (std::max)(std::size_t(1), points.size())) * n.centre;
-  return n;
-}
 
 /// Stage "surface": pulls the boundary back toward the target surface after
 /// untangling, without inverting anything. Around the boundary vertices
@@ -210,14 +188,7 @@ public:
     else
       ts.reset(new Target_surface(mesh, tsp));
 
-    std::vector<Vec3> omega = mesh.points;
-    ts->target_points(omega);
-    std::set<std::pair<std::size_t, std::size_t> > sharp;
-    for(std::size_t e = 0; e < ts->boundary().edges.size(); ++e)
-      if(ts->sharp_edges()[e]) sharp.insert({ts->boundary().edges[e][0], ts->boundary().edges[e][1]});
-    const Ideal_angles ideal(topo, boundary_edge_angles(topo, omega, [&](std::size_t a, std::size_t b) {
-                               return sharp.count(std::minmax(a, b)) != 0;
-                             }));
+    const Ideal_angles ideal = ideal_angles_on_target(topo, *ts, mesh.points);
 
     // ---- stage 1: the edge-angle local optimiser
     {
@@ -338,14 +309,7 @@ public:
     for(Vec3& p : mesh.points) p = nz.undo(p);
 
     // ---- never make the mesh worse
-    Quality_statistics q1 = quality_statistics(mesh);
-    if(q1.inverted > q0.inverted || (q1.inverted == q0.inverted && q1.msj < q0.msj))
-    {
-      mesh = input;
-      q1 = q0;
-      res.kept_input = true;
-    }
-    res.inverted_after = q1.inverted; res.msj_after = q1.msj; res.asj_after = q1.asj;
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
     res.success = q1.inverted == 0;
     res.surface_error = surface_error(mesh, input);
     res.seconds = since(start);
