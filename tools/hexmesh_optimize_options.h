@@ -33,7 +33,7 @@ struct Hexmesh_optimize_options
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
-  double time_limit = 30.;        ///< --time-limit S, per part (untangling, quality)
+  double time_limit = 30.;        ///< --time-limit S, whole run (untangling and quality)
   bool asj_smoothing = true;      ///< --no-asj
   bool pull_back = true;          ///< --no-pull-back
   bool relax_surface = true;      ///< --frozen-surface
@@ -104,7 +104,7 @@ inline const std::vector<Option_spec>& option_table()
        return parse_number("--surface-tolerance", v, 0., 1., o.surface_tolerance, e);
      }},
     {"--time-limit", "SECONDS",
-     "budget of each part (untangling, quality improvement) (default 30)",
+     "time budget of the optimisation, untangling included (default 30)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--time-limit", v, 0., 1e7, o.time_limit, e); }},
     {"--frozen-surface", nullptr,
      "never relax the surface while untangling (alpha, beta stay at their start value)",

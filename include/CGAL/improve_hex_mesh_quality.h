@@ -66,6 +66,9 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   {
     Hex_mesh_untangler<Visitor> untangler(u, visitor);
     result = untangler.run(arrays);
+    // `time_limit` bounds the whole pipeline: the quality part gets what
+    // untangling left, but at least a fifth of it (never-worse holds anyway)
+    s.time_limit_seconds = (std::max)(0.2 * s.time_limit_seconds, s.time_limit_seconds - result.seconds);
   }
   Hex_mesh_quality_improver<Visitor> improver(s, visitor);
   const Optimization_result q = improver.run(arrays, original);
@@ -200,7 +203,8 @@ pull-back, MSJ stages, ASJ smoothing), the surface error being measured
 against the input's boundary (or the reference surface) throughout.
 
 It takes the named parameters of both functions; `time_limit` is the budget of
-each part. The result's stages list both parts in order.
+the whole pipeline (default 30 s): the quality part gets what untangling left
+of it, and at least a fifth of it. The result's stages list both parts in order.
 */
 template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result

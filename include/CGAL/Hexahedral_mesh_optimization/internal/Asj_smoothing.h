@@ -73,6 +73,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
@@ -91,7 +92,7 @@ namespace internal {
 
 /// (positions, boundary vertex v, trial position x of v) -> largest distance
 /// between the boundary around v and the reference with v at x
-typedef std::function<double(const std::vector<Vec3>&, std::size_t, const Vec3&)> Local_deviation;
+typedef std::function<Surface_deviation(const std::vector<Vec3>&, std::size_t, const Vec3&)> Local_deviation;
 
 struct Asj_smoothing_settings
 {
@@ -132,8 +133,8 @@ struct Asj_smoothing_settings
   /// How the deviation is measured. Empty: the built-in test against the
   /// boundary as the stage received it (see `builtin_surface_test`), which
   /// bounds what this stage adds to the surface error. Given (e.g. a
-  /// `Surface_guard`): its value with v at x must stay within
-  /// max(`max_surface_deviation`, its value with v where it is).
+  /// `Surface_guard::local_deviations`): each direction with v at x must
+  /// stay within max(`max_surface_deviation`, its value with v where it is).
   Local_deviation local_deviation;
 };
 
@@ -639,17 +640,17 @@ private:
 
   // whether v may move to x as far as the surface is concerned; `allowed`
   // caches the user measure's bound for the current visit (< 0: not yet)
-  bool surface_test(std::size_t v, const Vec3& x, double& allowed) const
+  bool surface_test(std::size_t v, const Vec3& x, Surface_deviation& allowed) const
   {
     if(!m_check_surface || m_kind[v] == FREE) return true;
     if(!m_s.local_deviation) return builtin_surface_test(v, x);
-    if(allowed < 0.) allowed = (std::max)(m_s.max_surface_deviation, m_s.local_deviation(m_p, v, m_p[v]));
-    return m_s.local_deviation(m_p, v, x) <= allowed;
+    if(allowed.to_reference < 0.) allowed = m_s.local_deviation(m_p, v, m_p[v]).bound(m_s.max_surface_deviation);
+    return m_s.local_deviation(m_p, v, x).within(allowed);
   }
 
   // Backtracking along d: t = 1, 1/2, ... Returns the number of halvings of
   // the accepted step, or -1.
-  int line_search(std::size_t v, const Vec3& d, const Vec3& normal, double& current, double& allowed)
+  int line_search(std::size_t v, const Vec3& d, const Vec3& normal, double& current, Surface_deviation& allowed)
   {
     double t = 1.;
     for(int halvings = 0; halvings <= m_s.max_halvings; ++halvings, t *= 0.5)
@@ -673,7 +674,7 @@ private:
     Vec3 normal{0., 0., 0.};
     if(m_kind[v] == ON_SURFACE) normal = m_target->constraint_at(v, m_p[v]).direction;
     double current = current_value(v);
-    double allowed = -1.; // computed when first needed
+    Surface_deviation allowed{-1., -1.}; // computed when first needed
     bool moved = false;
 
     if(m_s.cuboid_targets)

@@ -65,6 +65,9 @@ public:
   void set_deadline(Clock::time_point t) { m_deadline = t; }
   /// the boundary constraints and their weight (between passes of a pull-back)
   void set_boundary(const std::vector<Boundary_constraint>& bc, double weight) { m_bc = &bc; m_wb = weight; }
+  /// weight of the sliding of a boundary vertex along its surface or feature
+  /// line, away from where it was when the constraints were computed
+  void set_sliding_weight(double w) { m_wt = w; }
 
   /// Untangling: `passes` passes of L-BFGS on the free vertices of the region,
   /// ε shrinking as the worst frame becomes positive.
@@ -276,8 +279,9 @@ private:
       Vec3 r = d; // corner: the whole displacement
       if(b.type == Vertex_class::regular) r = dot(d, b.direction) * b.direction;
       else if(b.type == Vertex_class::sharp) r = d - dot(d, b.direction) * b.direction;
-      e += m_wb * squared_norm(r);
-      if(grad) for(int k = 0; k < 3; ++k) (*grad)[3 * i + k] += 2. * m_wb * r[k];
+      const Vec3 t = d - r; // the sliding along the surface or the feature
+      e += m_wb * squared_norm(r) + m_wt * squared_norm(t);
+      if(grad) for(int k = 0; k < 3; ++k) (*grad)[3 * i + k] += 2. * (m_wb * r[k] + m_wt * t[k]);
     }
     return e;
   }
@@ -337,6 +341,7 @@ private:
   const Local_region& m_region;
   const std::vector<Boundary_constraint>* m_bc;
   double m_wb;
+  double m_wt = 0.;
   double m_eps = 1.;
   double m_scale = 1.;
   Clock::time_point m_deadline;

@@ -98,6 +98,11 @@ public:
 
   /// progress callback: (round, bad elements left)
   std::function<void(int, std::size_t)> on_round;
+  /// optional test of a step, besides the SJ rollback: given the region, the
+  /// positions of its free vertices before the step and the points after it,
+  /// returns false to roll the step back (the quality stages bound the
+  /// surface deviation with it)
+  std::function<bool(const Local_region&, const std::vector<Vec3>&, std::vector<Vec3>&)> accept_step;
 
   Local_optimizer_report run(std::vector<Vec3>& points, const Local_optimizer_settings& s) const
   {
@@ -209,7 +214,8 @@ private:
       counts(trial, nbad, ninv, nmin);
       // rollback: neither the bad nor the inverted count may rise, nor the
       // region's minimum fall below the stage's floor
-      if(nbad > bad || ninv > inv || (nmin < s.min_sj_floor && nmin < minsj))
+      if(nbad > bad || ninv > inv || (nmin < s.min_sj_floor && nmin < minsj) ||
+         (accept_step && !accept_step(region, saved, points)))
       {
         for(std::size_t i = 0; i < region.free_vertices.size(); ++i) points[region.free_vertices[i]] = saved[i];
         ++rep.rolled_back_steps;

@@ -165,6 +165,8 @@ struct Pull_back_settings
   /// relative residual of the conjugate gradient
   double cg_tolerance = 1e-8;
   int max_iterations = 50;
+  /// the run ends after the iteration that exceeds it (the best valid state is kept)
+  double time_limit_seconds = std::numeric_limits<double>::infinity();
   /// reached when every boundary vertex is within tolerance × mean edge length of its anchor
   double tolerance = 1e-3;
   /// rings of hexes around the displaced boundary vertices; < 0: the whole mesh
@@ -258,6 +260,9 @@ public:
     // when a few cannot reach)
     // the SJ floor starts at the input's minimum (never lower it) and is
     // relaxed towards min_sj_fraction × that minimum only when the run stalls
+    auto out_of_time = [&] {
+      return std::chrono::duration<double>(Clock::now() - start).count() > m_s.time_limit_seconds;
+    };
     double fraction = (std::max)(1., m_s.min_sj_fraction);
     m_floor = (std::max)(0., fraction * rep.min_sj_before);
     std::vector<Vec3> best = points;
@@ -274,7 +279,7 @@ public:
       bool floor_stalled = false;
       double ref_score = best_score;
       double d = rep.distance_before;
-      while(iteration < m_s.max_iterations)
+      while(iteration < m_s.max_iterations && !out_of_time())
       {
         ++iteration;
         double step = 0.;
@@ -305,7 +310,7 @@ public:
           since_gain = 0;
         }
       }
-      if(d <= tol || iteration >= m_s.max_iterations) break;
+      if(d <= tol || iteration >= m_s.max_iterations || out_of_time()) break;
       // stalled: relax the SJ floor if it is what blocks, else grow the region
       // first, then relax the floor
       const bool can_grow = rings >= 0 && growths < m_s.max_region_growths && m_hexes.size() < hexes.size();

@@ -72,6 +72,9 @@ struct Worst_element_smoothing_settings
   double max_surface_deviation = std::numeric_limits<double>::infinity();
   /// with a guard, the guard is the boundary constraint (see the top)
   bool use_guard = true;
+  /// when a sweep stalls, move the interior vertices of the worst elements
+  /// together (see `improve_element`)
+  bool element_moves = true;
 };
 
 struct Worst_element_smoothing_report
@@ -120,12 +123,35 @@ public:
       ++rep.sweeps;
       for(const auto& o : order)
         rep.moves += improve_vertex(points, o.second, sj, s.steps_per_vertex);
-      const double now = *std::min_element(sj.begin(), sj.end());
+      double now = *std::min_element(sj.begin(), sj.end());
+      if(now - msj < s.min_gain && s.element_moves)
+      {
+        // single-vertex moves have stalled: move the interior vertices of
+        // each element at the minimum together
+        std::vector<std::pair<double, std::size_t> > worst;
+        for(std::size_t h = 0; h < nh; ++h)
+          if(sj[h] < now + 0.5 * s.band) worst.push_back({sj[h], h});
+        std::sort(worst.begin(), worst.end());
+        for(const auto& w : worst) rep.moves += improve_element(points, w.second, sj);
+        now = *std::min_element(sj.begin(), sj.end());
+      }
       idle = (now - msj < s.min_gain) ? idle + 1 : 0;
       rep.msj_after = now;
       if(idle >= s.patience) break;
     }
     return rep;
+  }
+
+  /// one max-min move (up to `steps` ascent steps) of each of `vertices`,
+  /// in turn; returns the number of steps accepted
+  std::size_t raise_vertices(std::vector<Vec3>& points, const std::vector<std::size_t>& vertices, int steps = 3)
+  {
+    m_max_deviation = (m_target && m_guard) ? 0. : std::numeric_limits<double>::infinity();
+    m_guarded = false;
+    std::vector<double> sj(m_topo.number_of_hexes(), 0.); // only written: the moves read the points
+    std::size_t n = 0;
+    for(std::size_t v : vertices) n += improve_vertex(points, v, sj, steps);
+    return n;
   }
 
   /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
@@ -182,6 +208,77 @@ private:
     return m - std::log(sum) / softness;
   }
 
+  /// Joint move of the interior vertices of hex h: ascent on the soft minimum
+  /// of the samples of every hex around them (central differences in all
+  /// their coordinates), accepted only if the minimum over those hexes rises.
+  /// Single-vertex max-min stalls where several elements at the minimum
+  /// share vertices and each move of one vertex lowers one of them
+  /// (bunny_in: 9 sweeps end at 0.435 on interior hexes only).
+  std::size_t improve_element(std::vector<Vec3>& points, std::size_t h, std::vector<double>& sj) const
+  {
+    std::vector<std::size_t> verts;
+    for(std::size_t v : m_topo.hexes()[h]) if(!m_topo.is_boundary_vertex(v)) verts.push_back(v);
+    if(verts.empty()) return 0;
+    std::vector<std::size_t> around;
+    for(std::size_t v : verts)
+      for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) around.push_back(c->hex);
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    std::vector<double> buf;
+    auto soft = [&](double& hard) {
+      buf.clear();
+      for(std::size_t k : around)
+      {
+        const std::array<Vec3, 8> p = corners(points, k);
+        for(int i = 0; i < 8; ++i) buf.push_back(corner_scaled_jacobian(p, i));
+        buf.push_back(centre_scaled_jacobian(p));
+      }
+      hard = *std::min_element(buf.begin(), buf.end());
+      double sum = 0.;
+      for(double x : buf) sum += std::exp(-softness * (x - hard));
+      return hard - std::log(sum) / softness;
+    };
+    double length = 0.;
+    for(int k = 0; k < 12; ++k)
+      length += norm(points[m_topo.hexes()[h][hex_edges[k][0]]] - points[m_topo.hexes()[h][hex_edges[k][1]]]);
+    length /= 12.;
+    if(!(length > 0.)) return 0;
+    double f0 = 0.;
+    soft(f0);
+    const double step = 1e-4 * length;
+    std::vector<Vec3> g(verts.size()), x0(verts.size());
+    double gn = 0., dummy = 0.;
+    for(std::size_t i = 0; i < verts.size(); ++i)
+    {
+      x0[i] = points[verts[i]];
+      for(int d = 0; d < 3; ++d)
+      {
+        points[verts[i]][d] = x0[i][d] + step;
+        const double fp = soft(dummy);
+        points[verts[i]][d] = x0[i][d] - step;
+        const double fm = soft(dummy);
+        points[verts[i]][d] = x0[i][d];
+        g[i][d] = (fp - fm) / (2. * step);
+        gn += g[i][d] * g[i][d];
+      }
+    }
+    gn = std::sqrt(gn);
+    if(!(gn > 0.)) return 0;
+    for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
+    {
+      for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i] + (t / gn) * g[i];
+      double hard = 0.;
+      soft(hard);
+      if(hard > f0 + 1e-9)
+      {
+        for(std::size_t k : around) sj[k] = hex_sj(points, k);
+        return 1;
+      }
+    }
+    for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i];
+    return 0;
+  }
+
   /// up to `steps` ascent steps on vertex v; returns the number accepted
   std::size_t improve_vertex(std::vector<Vec3>& points, std::size_t v, std::vector<double>& sj, int steps) const
   {
@@ -198,7 +295,8 @@ private:
 
     std::vector<double> buf;
     std::size_t accepted = 0;
-    const double allowed = guarded ? (std::max)(m_max_deviation, m_guard->local_deviation(points, v, points[v])) : 0.;
+    const Surface_deviation allowed =
+      guarded ? m_guard->local_deviations(points, v, points[v]).bound(m_max_deviation) : Surface_deviation();
     double f0 = local_minimum(points, v, points[v]);
     // the kinds of move tried in turn, until one is accepted
     enum Move { along_class, on_reference, free_move };
@@ -244,7 +342,7 @@ private:
           if(moves[m] == along_class) x = m_target->constraint_at(v, x).anchor;
           else if(moves[m] == on_reference) m_target->closest_on_reference(Vec3(x), x);
           const double f = local_minimum(points, v, x);
-          if(f > f0 + 1e-9 && (!guarded || m_guard->local_deviation(points, v, x) <= allowed))
+          if(f > f0 + 1e-9 && (!guarded || m_guard->local_deviations(points, v, x).within(allowed)))
           {
             points[v] = x;
             f0 = f;

@@ -1,0 +1,147 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_BOUNDARY_RESTORATION_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_BOUNDARY_RESTORATION_H
+
+// Stage "surface restoration": moves boundary vertices back toward a home
+// position on the reference, one vertex at a time, wherever the quality
+// allows it.
+//
+// Why: the surface error is a Hausdorff distance, so it is set by the few
+// places where untangling (the edge-angle optimiser relaxes α and β until
+// the last element is free; the barrier stage lets vertices slide along the
+// surface) or a quality stage moved the boundary furthest. Projecting a
+// vertex onto the reference does not undo a slide along a curved or creased
+// surface; moving it home does. The home of a vertex is its input position
+// when the reference is the input's own boundary (the vertex was on it) and
+// its projection onto the reference otherwise.
+//
+// A move, from x toward home h, tries x + s (h − x) for s = 1, 1/2, 1/4, 1/8
+// and is kept only if
+//   - neither direction of the surface deviation around the vertex
+//     (Surface_guard) grows, and
+//   - no hex around the vertex falls below min(floor, its minimum before),
+//     `floor` being the MSJ the mesh has: the MSJ never drops.
+// Vertices are visited furthest from home first; the interior vertices around
+// the ones that could not move are then given a max-min move
+// (Worst_element_smoothing) so that the next sweep may move them further.
+// Measured on the shared meshes: see Hex_mesh_quality_improver.h.
+
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Worst_element_smoothing.h>
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Boundary_restoration_settings
+{
+  /// vertices whose surface deviation is at most this are left alone (mesh units)
+  double threshold = 0.;
+  /// no hex may fall below min(floor, its minimum before the move)
+  double floor = 0.;
+  int max_sweeps = 8;
+  double time_limit_seconds = 5.;
+};
+
+struct Boundary_restoration_report
+{
+  double distance_before = 0., distance_after = 0.; ///< largest distance of a boundary vertex to its home (mesh units)
+  std::size_t moves = 0;
+  int sweeps = 0;
+};
+
+/// Moves the boundary vertices of `points` toward `home` (see the top).
+inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& topo, const Surface_guard& guard,
+                                                     const std::vector<std::size_t>& boundary_vertices,
+                                                     const std::vector<Vec3>& home, std::vector<Vec3>& points,
+                                                     const Boundary_restoration_settings& s)
+{
+  typedef std::chrono::steady_clock Clock;
+  const auto start = Clock::now();
+  const Worst_element_smoothing probe(topo, nullptr, nullptr);
+  Boundary_restoration_report rep;
+  auto largest_distance = [&] {
+    double w = 0.;
+    for(std::size_t v : boundary_vertices) w = (std::max)(w, norm(home[v] - points[v]));
+    return w;
+  };
+  rep.distance_before = rep.distance_after = largest_distance();
+  // vertices to visit: all at first, then those next to a vertex that moved
+  std::vector<char> active(topo.number_of_vertices(), 1);
+  auto activate_around = [&](std::size_t v, std::vector<char>& next) {
+    for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+      for(std::size_t u : topo.hexes()[c->hex]) next[u] = 1;
+  };
+  for(int sweep = 0; sweep < s.max_sweeps; ++sweep)
+  {
+    if(std::chrono::duration<double>(Clock::now() - start).count() > s.time_limit_seconds) break;
+    // furthest from home first (the deviation would cost a guard query each)
+    std::vector<std::pair<double, std::size_t> > order;
+    for(std::size_t v : boundary_vertices)
+    {
+      const double d = squared_norm(home[v] - points[v]);
+      if(active[v] && d > 0.) order.push_back({-d, v});
+    }
+    if(order.empty()) break;
+    std::sort(order.begin(), order.end());
+    ++rep.sweeps;
+    std::vector<char> next(topo.number_of_vertices(), 0);
+    std::size_t moved = 0;
+    std::vector<std::size_t> stuck;
+    for(const auto& o : order)
+    {
+      const std::size_t v = o.second;
+      const Vec3 x = points[v];
+      const Surface_deviation dev = guard.local_deviations(points, v, x);
+      if(dev.max() <= s.threshold) continue;
+      const double floor = (std::min)(s.floor, probe.local_minimum(points, v, x));
+      bool done = false;
+      for(double step = 1.; step >= 0.125 && !done; step *= 0.5)
+      {
+        const Vec3 y = x + step * (home[v] - x);
+        if(probe.local_minimum(points, v, y) < floor) continue;
+        if(!guard.local_deviations(points, v, y).within(dev)) continue;
+        points[v] = y;
+        done = true;
+      }
+      if(done) { ++moved; activate_around(v, next); }
+      else stuck.push_back(v);
+    }
+    rep.moves += moved;
+    // give the interior around the stuck vertices room: a max-min move of
+    // each interior neighbour (the boundary stays where it is)
+    if(!stuck.empty())
+    {
+      std::vector<char> seen(topo.number_of_vertices(), 0);
+      std::vector<std::size_t> ring;
+      for(std::size_t v : stuck)
+        for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+          for(std::size_t u : topo.hexes()[c->hex])
+            if(!seen[u] && !topo.is_boundary_vertex(u)) { seen[u] = 1; ring.push_back(u); }
+      Worst_element_smoothing smoother(topo, nullptr, nullptr);
+      const std::vector<Vec3> before = points;
+      smoother.raise_vertices(points, ring);
+      for(std::size_t u : ring)
+        if(squared_norm(points[u] - before[u]) > 0.) activate_around(u, next);
+    }
+    active.swap(next);
+    if(moved == 0) break;
+  }
+  rep.distance_after = largest_distance();
+  return rep;
+}
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_BOUNDARY_RESTORATION_H
