@@ -57,6 +57,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   read_untangle_parameters(np, gt, u, ref_points, ref_tris);
   Quality_settings s;
   read_quality_parameters(np, u, s);
+  u.time_limit_seconds = s.time_limit_seconds; // one budget for the whole pipeline
 
   Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   const Hex_mesh_arrays original = arrays;

@@ -15,6 +15,7 @@
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
 #include <CGAL/improve_hex_mesh_quality.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_restoration.h>
 
 #include <cmath>
 #include <random>
@@ -208,8 +209,60 @@ static void test_lcc()
   HMO_CHECK(r.msj_after >= 0.5);
 }
 
+/// The surface restoration stage: boundary vertices slid along a curved
+/// face come back to their home positions (the surface error with them),
+/// and no element falls below the floor.
+static void test_boundary_restoration()
+{
+  using namespace HMO::internal;
+  const int n = 4;
+  const Mesh m = shell(n, 0.8);
+  Hex_mesh_arrays input = make_hex_mesh_arrays(m, K());
+  Hex_mesh_arrays a = input;
+  // slide the inner-face vertices (k = 0, 0 < i < n) along the arc by a
+  // third of an edge: the quads cut the cylinder, the mesh stays valid
+  std::size_t slid = 0;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 1; i < n; ++i)
+    {
+      const std::size_t v = std::size_t(j * (n + 1) + i);
+      const double r = n, t = 0.8 * (i + 0.35) / n;
+      a.points[v] = Vec3{r * std::cos(t), r * std::sin(t), double(j)};
+      ++slid;
+    }
+  const double err_before = relative_surface_error(a, input);
+  HMO_CHECK(err_before > 1e-3);
+  const double msj_before = quality_statistics(a).msj;
+  HMO_CHECK(msj_before > 0.);
+
+  const Hex_mesh_topology topo(a);
+  const Hex_mesh_boundary boundary = extract_boundary(input);
+  std::vector<Vec3> ref_points;
+  std::vector<Tri> ref_tris;
+  triangulate_boundary(boundary, input.points, Quad_split::diagonal_02, ref_points, ref_tris);
+  const Surface_guard guard(boundary, ref_points, ref_tris, input.points);
+  Boundary_restoration_settings bs;
+  bs.floor = msj_before;
+  const Boundary_restoration_report br = restore_boundary(topo, guard, boundary.vertices, input.points, a.points, bs);
+  HMO_CHECK(br.moves >= slid);
+  HMO_CHECK(br.distance_before > 0.25); // an arc of 0.07 rad at radius 4
+  HMO_CHECK(br.distance_after < 1e-12);
+  HMO_CHECK(relative_surface_error(a, input) < 1e-9);
+  HMO_CHECK(quality_statistics(a).msj >= msj_before - 1e-12);
+
+  // a floor above what home allows: nothing moves below it
+  Hex_mesh_arrays b = input;
+  b.points[std::size_t(2 * (n + 1) + 2)] = b.points[std::size_t(2 * (n + 1) + 2)] + Vec3{0., 0., 0.3};
+  const double msj_b = quality_statistics(b).msj;
+  Boundary_restoration_settings high;
+  high.floor = 2.; // min(floor, local minimum): no hex may get worse than it is
+  restore_boundary(topo, guard, boundary.vertices, input.points, b.points, high);
+  HMO_CHECK(quality_statistics(b).msj >= msj_b - 1e-12);
+}
+
 int main(int, char** argv)
 {
+  test_boundary_restoration();
   test_stage_schedule();
   test_never_worse();
   test_pipeline_on_tangled_mesh();
