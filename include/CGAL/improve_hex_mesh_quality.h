@@ -158,17 +158,17 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{pull_back}
-    \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance}
+    \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance (its result is kept only if it lowers the surface error)}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{asj_smoothing}
-    \cgalParamDescription{whether the final ASJ smoothing runs}
+    \cgalParamDescription{whether the ASJ smoothing runs: at the end, and in turn with the MSJ stages while that raises the MSJ}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{wall-clock budget in seconds}
+    \cgalParamDescription{wall-clock budget in seconds; the stages share it (a tenth is kept for the final checks), so a run ends within about this time plus the reading and writing of the mesh}
     \cgalParamType{`double`}
     \cgalParamDefault{30}
   \cgalParamNEnd
