@@ -217,21 +217,22 @@ public:
     {
       const std::vector<Vec3> saved = mesh.points;
       const double before = quality_statistics(mesh).msj;
-      asj_stage(topo, ts, guard_points, guard_tris, guard_start, guard_tolerance, 0.1 * m_s.time_limit_seconds, mesh, res);
-      msj_stages(topo, ts, ideal, mesh, guard_points, guard_tris, guard_start, guard_tolerance, start, res);
+      // the guard at 0.7 × the tolerance, as for the final smoothing
+      asj_stage(topo, ts, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance, 0.1 * m_s.time_limit_seconds, mesh, res);
+      msj_stages(topo, ts, ideal, mesh, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance, start, res);
       if(!within_bound(saved, "the last ASJ + MSJ turn")) break;
       if(quality_statistics(mesh).msj < before + 0.001) break;
     }
 
     // ---- stage: ASJ smoothing, never below the MSJ reached, with what is
-    // left of the budget (a fifth kept for the checks), its guard at 0.7 ×
+    // left of the budget (a quarter kept for the checks), its guard at 0.7 ×
     // the tolerance so that its creep stays within the bound (hanger
     // stress test: at 1 × it was undone twice, ASJ 0.985 lost)
     if(m_s.asj_smoothing)
     {
       const std::vector<Vec3> saved = mesh.points;
       asj_stage(topo, ts, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance,
-                0.8 * m_s.time_limit_seconds - elapsed(start), mesh, res);
+                0.75 * m_s.time_limit_seconds - elapsed(start), mesh, res);
       within_bound(saved, "the final ASJ smoothing");
     }
 
@@ -262,15 +263,22 @@ private:
     };
     as.time_limit_seconds = (std::max)(1., seconds);
     const Asj_smoothing_report ar = smooth_for_average_quality(topo, &ts, mesh.points, as);
-    Stage_report sr;
-    sr.name = "asj";
-    sr.inverted_before = sr.inverted_after = q.inverted;
-    sr.msj_after = quality_statistics(mesh).msj;
-    sr.seconds = seconds_since(t);
-    sr.rounds = ar.passes;
     std::ostringstream d;
     d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << ", MSJ kept at " << ar.msj_after;
-    sr.details = d.str();
+    report_stage("asj", q, mesh, t, ar.passes, d.str(), res);
+  }
+
+  /// completes the report of a stage that inverts nothing and hands it to the visitor
+  void report_stage(const std::string& name, const Quality_statistics& before, const Hex_mesh_arrays& mesh,
+                    Clock::time_point t, int rounds, const std::string& details, Optimization_result& res)
+  {
+    Stage_report sr;
+    sr.name = name;
+    sr.inverted_before = sr.inverted_after = before.inverted;
+    sr.msj_after = quality_statistics(mesh).msj;
+    sr.seconds = seconds_since(t);
+    sr.rounds = rounds;
+    sr.details = details;
     res.stages.push_back(sr);
     m_visitor.stage_finished(sr);
   }
@@ -287,19 +295,11 @@ private:
     bs.floor = q.msj;
     bs.time_limit_seconds = 0.1 * m_s.time_limit_seconds;
     const Boundary_restoration_report br = restore_boundary(topo, guard, ts.boundary().vertices, home, mesh.points, bs);
-    Stage_report sr;
-    sr.name = "surface restoration";
-    sr.inverted_before = sr.inverted_after = q.inverted;
-    sr.msj_after = quality_statistics(mesh).msj;
-    sr.seconds = seconds_since(t);
-    sr.rounds = br.sweeps;
     std::ostringstream d;
     d << br.moves << " boundary moves toward the reference in " << br.sweeps
       << " sweeps, largest distance of a boundary vertex to its home " << br.distance_before / 0.025 << " -> "
       << br.distance_after / 0.025 << " mean edge lengths";
-    sr.details = d.str();
-    res.stages.push_back(sr);
-    m_visitor.stage_finished(sr);
+    report_stage("surface restoration", q, mesh, t, br.sweeps, d.str(), res);
   }
 
   static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -361,6 +361,9 @@ private:
                   const std::vector<Vec3>& guard_start, double guard_tolerance, Clock::time_point start, Optimization_result& res)
   {
     Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
+    // the MSJ stages end by 0.65 of the budget: the restoration, the final
+    // ASJ smoothing and the surface checks need the rest
+    const double limit = 0.65 * m_s.time_limit_seconds;
     const double target = (std::min)(m_s.target_msj, 1.);
     double msj = quality_statistics(mesh).msj;
     for(int k = 0; ; ++k)
@@ -368,7 +371,7 @@ private:
       double t = k * m_s.stage_step;
       if(t > target) t = target;
       if(msj > t && t < target) continue;
-      const double budget = m_s.time_limit_seconds - elapsed(start);
+      const double budget = limit - elapsed(start);
       if(budget <= 0.) break;
       const auto t0 = Clock::now();
       std::ostringstream name;
@@ -387,7 +390,7 @@ private:
       ws.target_sj = t;
       ws.max_surface_deviation = guard_tolerance;
       auto smooth = [&] {
-        ws.time_limit_seconds = (std::max)(0.5, 0.5 * (m_s.time_limit_seconds - elapsed(start)));
+        ws.time_limit_seconds = (std::max)(0.5, 0.5 * (limit - elapsed(start)));
         const Worst_element_smoothing_report wr = polish.run(mesh.points, ws);
         const double now = quality_statistics(mesh).msj;
         d << "max-min smoothing: " << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << msj << " -> " << now;
@@ -400,7 +403,7 @@ private:
       // the last element below 0.7 did not fix it, but the max-min smoothing
       // after it went from 0.691 to 0.697)
       for(double gain = 1.; msj < t && gain >= 0.005 && m_s.edge_angle &&
-                            m_s.time_limit_seconds - elapsed(start) > 0.2 * m_s.time_limit_seconds;)
+                            limit - elapsed(start) > 0.2 * limit;)
       {
         const double msj_pass = msj;
         Local_optimizer opt(topo, ideal,
@@ -419,7 +422,7 @@ private:
         ls.xi_start = m_s.xi;
         ls.local_iterations = m_s.local_iterations;
         ls.max_rounds = m_s.rounds_per_stage;
-        ls.time_limit_seconds = 0.3 * (m_s.time_limit_seconds - elapsed(start));
+        ls.time_limit_seconds = 0.3 * (limit - elapsed(start));
         ls.min_sj_floor = msj;
         const Local_optimizer_report r = opt.run(mesh.points, ls);
         sr.rounds = r.rounds;
