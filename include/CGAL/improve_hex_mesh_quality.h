@@ -168,7 +168,7 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{wall-clock budget in seconds; the stages share it (a quarter is kept for the final checks), so a run ends within about this time plus the reading and writing of the mesh}
+    \cgalParamDescription{wall-clock budget in seconds; the stages share it (a third is kept for the final checks), so a run ends within about this time plus the reading and writing of the mesh}
     \cgalParamType{`double`}
     \cgalParamDefault{30}
   \cgalParamNEnd
