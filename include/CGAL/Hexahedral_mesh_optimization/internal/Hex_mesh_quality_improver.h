@@ -32,8 +32,12 @@
 //      A stage that does not reach its t ends the schedule: the MSJ is then
 //      as high as this method gets it;
 //   5. "surface restoration" again, at the MSJ reached;
-//   6. stage "asj" (Asj_smoothing.h): raises the mean without lowering any
-//      element below the MSJ reached;
+//   6. turns of "asj" and "msj>=t" stages while the MSJ rises, then a final
+//      "asj" stage (Asj_smoothing.h: raises the mean without lowering any
+//      element below the MSJ reached); a turn, or the final smoothing, that
+//      leaves the surface error above max(tolerance, the error before the
+//      turns) gets a restoration, and is undone ("surface check") if that
+//      does not bring it back;
 //   7. undo the normalisation; if the MSJ (or the inverted count) is worse
 //      than the input's, the input is returned.
 //
