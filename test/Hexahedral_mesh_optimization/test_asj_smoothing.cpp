@@ -8,6 +8,7 @@
 // a curved grid the surface error stays within the deviation bound. With the
 // shared data, a real mesh gains ASJ without losing MSJ.
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -39,7 +40,6 @@ Hex_mesh_arrays perturbed_cube(int n, double a, unsigned seed)
 {
   Hex_mesh_arrays m;
   const double h = 1. / n;
-  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-a * h, a * h);
   for(int k = 0; k <= n; ++k)
@@ -52,11 +52,7 @@ Hex_mesh_arrays perturbed_cube(int n, double a, unsigned seed)
           if(ijk[d] != 0 && ijk[d] != n) p[d] += u(rng); // only along the free directions
         m.points.push_back(p);
       }
-  for(int k = 0; k < n; ++k)
-    for(int j = 0; j < n; ++j)
-      for(int i = 0; i < n; ++i)
-        m.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                           id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  m.hexes = hmo_test::structured_hexes(n, n, n);
   return m;
 }
 
@@ -64,7 +60,6 @@ Hex_mesh_arrays perturbed_cube(int n, double a, unsigned seed)
 Hex_mesh_arrays perturbed_shell(int nr, int nt, int nz, double a, unsigned seed)
 {
   Hex_mesh_arrays m;
-  auto id = [&](int i, int j, int k) { return std::size_t((k * (nt + 1) + j) * (nr + 1) + i); };
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-a, a);
   const double pi = 3.14159265358979323846;
@@ -78,11 +73,7 @@ Hex_mesh_arrays perturbed_shell(int nr, int nt, int nz, double a, unsigned seed)
         const double z = double(k) / nz + (inner ? u(rng) / nz : 0.);
         m.points.push_back({r * std::cos(t), r * std::sin(t), z});
       }
-  for(int k = 0; k < nz; ++k)
-    for(int j = 0; j < nt; ++j)
-      for(int i = 0; i < nr; ++i)
-        m.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                           id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  m.hexes = hmo_test::structured_hexes(nr, nt, nz);
   return m;
 }
 

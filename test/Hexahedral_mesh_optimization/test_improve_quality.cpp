@@ -7,6 +7,7 @@
 // independent recount, the surface staying on the reference, the whole
 // pipeline (untangle + improve) on a tangled grid, and the LCC overload.
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -34,7 +35,6 @@ namespace HP = CGAL::hex_mesh_parameters;
 static Mesh shell(int n, double bend)
 {
   Mesh m;
-  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
   for(int k = 0; k <= n; ++k)
     for(int j = 0; j <= n; ++j)
       for(int i = 0; i <= n; ++i)
@@ -42,11 +42,7 @@ static Mesh shell(int n, double bend)
         const double r = n + k, a = bend * i / n;
         m.points.emplace_back(r * std::cos(a), r * std::sin(a), j);
       }
-  for(int k = 0; k < n; ++k)
-    for(int j = 0; j < n; ++j)
-      for(int i = 0; i < n; ++i)
-        m.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                               id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  m.hexahedra = hmo_test::structured_hexes(n, n, n);
   return m;
 }
 
@@ -156,15 +152,10 @@ static void test_never_worse()
   const int n = 3;
   Mesh g;
   {
-    auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
     for(int k = 0; k <= n; ++k)
       for(int j = 0; j <= n; ++j)
         for(int i = 0; i <= n; ++i) g.points.emplace_back(i, j, k);
-    for(int k = 0; k < n; ++k)
-      for(int j = 0; j < n; ++j)
-        for(int i = 0; i < n; ++i)
-          g.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                                 id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+    g.hexahedra = hmo_test::structured_hexes(n, n, n);
   }
   const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(g);
   HMO_CHECK_CLOSE(r.msj_after, 1., 1e-9);

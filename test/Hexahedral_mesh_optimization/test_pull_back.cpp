@@ -6,6 +6,7 @@
 // it without any accepted step inverting an element; an unreachable target
 // ends gracefully with a valid mesh.
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pull_back.h>
@@ -26,45 +27,8 @@ using HMO::operator+;
 using HMO::operator-;
 using HMO::operator*;
 
-// nx × ny × nz grid spanning [0,sx]×[0,sy]×[0,sz], MEDIT order
-HMO::Hex_mesh_arrays grid(std::size_t nx, std::size_t ny, std::size_t nz,
-                          double sx = 1., double sy = 1., double sz = 1.)
-{
-  HMO::Hex_mesh_arrays m;
-  auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return i + (nx + 1) * (j + (ny + 1) * k); };
-  for(std::size_t k = 0; k <= nz; ++k)
-    for(std::size_t j = 0; j <= ny; ++j)
-      for(std::size_t i = 0; i <= nx; ++i)
-        m.points.push_back(Vec3{sx * double(i) / double(nx), sy * double(j) / double(ny), sz * double(k) / double(nz)});
-  for(std::size_t k = 0; k < nz; ++k)
-    for(std::size_t j = 0; j < ny; ++j)
-      for(std::size_t i = 0; i < nx; ++i)
-        m.hexes.push_back(HMO::Hex{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                                   id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
-  return m;
-}
-
-// a grid whose square cross-section [-1,1]² is mapped onto the unit disk
-// ring by ring (uniform angle along each square ring): a closed cylinder
-HMO::Hex_mesh_arrays cylinder(std::size_t n, std::size_t nz, double height)
-{
-  HMO::Hex_mesh_arrays m = grid(n, n, nz, 2., 2., height);
-  for(Vec3& p : m.points)
-  {
-    const double x = p[0] - 1., y = p[1] - 1.;
-    const double r = (std::max)(std::abs(x), std::abs(y));
-    if(r < 1e-12) { p[0] = p[1] = 0.; continue; }
-    double s; // arc-length parameter along the square ring of half-side r, in [0, 8r)
-    if(x >= r - 1e-12)        s = y + r;
-    else if(y >= r - 1e-12)   s = 2 * r + (r - x);
-    else if(x <= -r + 1e-12)  s = 4 * r + (r - y);
-    else                      s = 6 * r + (x + r);
-    const double a = s / (8. * r) * 2. * CGAL_PI - CGAL_PI / 4.;
-    p[0] = r * std::cos(a);
-    p[1] = r * std::sin(a);
-  }
-  return m;
-}
+using hmo_test::grid;
+using hmo_test::cylinder;
 
 double min_sj(const HMO::Hex_mesh_arrays& m, const std::vector<Vec3>& p)
 {

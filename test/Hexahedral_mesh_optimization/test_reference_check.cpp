@@ -5,6 +5,7 @@
 // trilinear hex volumes, vertices outside, boundary self-intersections and
 // the errors of invalid references.
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 #include <CGAL/hex_mesh_reference_check.h>
@@ -41,16 +42,11 @@ using HMO::operator*;
 Mesh grid(std::size_t nx, std::size_t ny, std::size_t nz, double sx, double sy, double sz)
 {
   Mesh m;
-  auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return i + (nx + 1) * (j + (ny + 1) * k); };
   for(std::size_t k = 0; k <= nz; ++k)
     for(std::size_t j = 0; j <= ny; ++j)
       for(std::size_t i = 0; i <= nx; ++i)
         m.points.push_back(Point(sx * double(i) / double(nx), sy * double(j) / double(ny), sz * double(k) / double(nz)));
-  for(std::size_t k = 0; k < nz; ++k)
-    for(std::size_t j = 0; j < ny; ++j)
-      for(std::size_t i = 0; i < nx; ++i)
-        m.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                               id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  m.hexahedra = hmo_test::structured_hexes(nx, ny, nz);
   return m;
 }
 

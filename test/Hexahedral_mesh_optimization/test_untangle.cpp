@@ -8,6 +8,7 @@
 // result object against an independent recount; the never-worse guarantee;
 // the LCC overload.
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -31,7 +32,6 @@ namespace HMO = CGAL::Hexahedral_mesh_optimization;
 static Mesh grid(int n, double bend = 0.)
 {
   Mesh m;
-  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
   for(int k = 0; k <= n; ++k)
     for(int j = 0; j <= n; ++j)
       for(int i = 0; i <= n; ++i)
@@ -40,11 +40,7 @@ static Mesh grid(int n, double bend = 0.)
         const double r = n + k, a = bend * i / n;
         m.points.emplace_back(r * std::cos(a), r * std::sin(a), j);
       }
-  for(int k = 0; k < n; ++k)
-    for(int j = 0; j < n; ++j)
-      for(int i = 0; i < n; ++i)
-        m.hexahedra.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                               id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  m.hexahedra = hmo_test::structured_hexes(n, n, n);
   return m;
 }
 
