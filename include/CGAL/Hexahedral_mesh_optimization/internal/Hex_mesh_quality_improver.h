@@ -182,12 +182,14 @@ public:
     // (with a user's reference, which the guard checks directly) the
     // boundary as it is now
     const std::vector<Vec3> guard_start = user_reference ? mesh.points : home;
-    restoration_stage(topo, ts, home, guard_points, guard_tris, guard_start, mesh, res);
+    // one guard for every stage (its reference tree is built once)
+    const Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
+    restoration_stage(topo, guard, ts, home, mesh, res);
 
     // ---- MSJ stages, boundary moves bounded by the surface guard
     const double guard_tolerance = tolerance;
-    msj_stages(topo, ts, ideal, mesh, guard_points, guard_tris, guard_start, guard_tolerance, start, res);
-    restoration_stage(topo, ts, home, guard_points, guard_tris, guard_start, mesh, res);
+    msj_stages(topo, ts, ideal, guard, guard_tolerance, start, mesh, res);
+    restoration_stage(topo, guard, ts, home, mesh, res);
 
     // ---- ASJ smoothing and MSJ stages in turn while the MSJ rises: the
     // smoothing reshapes the bulk, which frees elements the max-min
@@ -206,7 +208,7 @@ public:
       current_error = scaled_error(mesh, reference, nz);
       if(current_error <= error_bound) return true;
       // first try to bring the boundary back home, at the MSJ reached
-      restoration_stage(topo, ts, home, guard_points, guard_tris, guard_start, mesh, res);
+      restoration_stage(topo, guard, ts, home, mesh, res);
       const double e = current_error = scaled_error(mesh, reference, nz);
       if(e <= error_bound) return true;
       mesh.points = saved;
@@ -227,8 +229,8 @@ public:
       const std::vector<Vec3> saved = mesh.points;
       const double before = quality_statistics(mesh).msj;
       // the guard at 0.7 × the tolerance, as for the final smoothing
-      asj_stage(topo, ts, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance, 0.1 * m_s.time_limit_seconds, mesh, res);
-      msj_stages(topo, ts, ideal, mesh, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance, start, res);
+      asj_stage(topo, ts, guard, 0.7 * guard_tolerance, 0.1 * m_s.time_limit_seconds, mesh, res);
+      msj_stages(topo, ts, ideal, guard, 0.7 * guard_tolerance, start, mesh, res);
       if(!within_bound(saved, "the last ASJ + MSJ turn")) break;
       if(quality_statistics(mesh).msj < before + 0.001) break;
     }
@@ -240,7 +242,7 @@ public:
     if(m_s.asj_smoothing)
     {
       const std::vector<Vec3> saved = mesh.points;
-      asj_stage(topo, ts, guard_points, guard_tris, guard_start, 0.7 * guard_tolerance,
+      asj_stage(topo, ts, guard, 0.7 * guard_tolerance,
                 0.65 * m_s.time_limit_seconds - elapsed(start), mesh, res);
       within_bound(saved, "the final ASJ smoothing");
     }
@@ -256,14 +258,13 @@ public:
   }
 
 private:
-  void asj_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const std::vector<Vec3>& guard_points, const std::vector<Tri>& guard_tris,
-                 const std::vector<Vec3>& guard_start, double guard_tolerance, double seconds, Hex_mesh_arrays& mesh,
+  void asj_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const Surface_guard& guard,
+                 double guard_tolerance, double seconds, Hex_mesh_arrays& mesh,
                  Optimization_result& res)
   {
     const auto t = Clock::now();
     const Quality_statistics q = quality_statistics(mesh);
     m_visitor.stage_started("asj", 0);
-    Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
     Asj_smoothing_settings as;
     as.min_sj_floor = q.msj;
     as.max_surface_deviation = guard_tolerance;
@@ -292,13 +293,12 @@ private:
     m_visitor.stage_finished(sr);
   }
 
-  void restoration_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const std::vector<Vec3>& home,
-                         const std::vector<Vec3>& guard_points, const std::vector<Tri>& guard_tris,
-                         const std::vector<Vec3>& guard_start, Hex_mesh_arrays& mesh, Optimization_result& res)
+  void restoration_stage(const Hex_mesh_topology& topo, const Surface_guard& guard, const Target_surface& ts,
+                         const std::vector<Vec3>& home,
+                         Hex_mesh_arrays& mesh, Optimization_result& res)
   {
     const auto t = Clock::now();
     m_visitor.stage_started("surface restoration", 0);
-    Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
     Boundary_restoration_settings bs;
     const Quality_statistics q = quality_statistics(mesh);
     bs.floor = q.msj;
@@ -366,10 +366,9 @@ private:
   }
 
   void msj_stages(const Hex_mesh_topology& topo, const Target_surface& ts, const Ideal_angles& ideal,
-                  Hex_mesh_arrays& mesh, const std::vector<Vec3>& guard_points, const std::vector<Tri>& guard_tris,
-                  const std::vector<Vec3>& guard_start, double guard_tolerance, Clock::time_point start, Optimization_result& res)
+                  const Surface_guard& guard, double guard_tolerance, Clock::time_point start, Hex_mesh_arrays& mesh,
+                  Optimization_result& res)
   {
-    Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
     // the MSJ stages end by 0.55 of the budget: the restoration, the final
     // ASJ smoothing and the surface checks need the rest
     const double limit = 0.55 * m_s.time_limit_seconds;

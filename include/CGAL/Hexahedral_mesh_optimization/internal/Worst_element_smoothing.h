@@ -146,8 +146,7 @@ public:
   /// in turn; returns the number of steps accepted
   std::size_t raise_vertices(std::vector<Vec3>& points, const std::vector<std::size_t>& vertices, int steps = 3)
   {
-    m_max_deviation = (m_target && m_guard) ? 0. : std::numeric_limits<double>::infinity();
-    m_guarded = false;
+    m_guarded = false; // no boundary vertex is meant to move here
     std::vector<double> sj(m_topo.number_of_hexes(), 0.); // only written: the moves read the points
     std::size_t n = 0;
     for(std::size_t v : vertices) n += improve_vertex(points, v, sj, steps);
