@@ -39,6 +39,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <vector>
 
@@ -109,8 +110,13 @@ inline Surface_distance surface_distance(const Triangle_surface& mesh,
     return d;
   }
   const double bound = relative_error_bound * (std::max)(d.reference_diagonal, diagonal(mb));
+  // the two directions at once (CGAL's Parallel_tag needs METIS as well);
+  // each only reads both surfaces
+  auto other = std::async(std::launch::async, [&] {
+    return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(reference, mesh, bound);
+  });
   d.mesh_to_reference = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(mesh, reference, bound);
-  d.reference_to_mesh = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(reference, mesh, bound);
+  d.reference_to_mesh = other.get();
   return d;
 }
 
