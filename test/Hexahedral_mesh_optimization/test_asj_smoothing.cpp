@@ -5,7 +5,8 @@
 // the ASJ, no element ends below min(floor, its own start), the boundary
 // stays on the target (face vertices in their planes, edge vertices on their
 // lines, corners unmoved; a fixed boundary without a target surface), and on
-// a curved grid the surface error stays within the deviation bound. With the
+// a curved grid the surface error stays within the deviation bound; a
+// focused pass moves only vertices near the worst hexes. With the
 // shared data, a real mesh gains ASJ without losing MSJ.
 
 #include "test_meshes.h"
@@ -17,8 +18,10 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -172,6 +175,54 @@ void test_cube()
   }
 }
 
+// focus_below: one pass visits only the vertices of the hexes below the
+// focus value and of the hexes around those; the others stay where they are
+void test_focus()
+{
+  const int n = 8;
+  Hex_mesh_arrays in = perturbed_cube(n, 0.25, 3);
+  in.points[2 + 3 * (n + 1) + 3 * (n + 1) * (n + 1)][0] += 0.4 / n; // a worse spot inside
+  const std::vector<double> sj0 = HMO::internal::scaled_jacobians(in);
+  const double msj0 = *std::min_element(sj0.begin(), sj0.end());
+  HMO_CHECK(msj0 > 0.);
+  const Hex_mesh_topology topo(in);
+  const Target_surface target(in);
+  Asj_smoothing_settings s;
+  s.min_sj_floor = msj0;
+  s.max_passes = 1;
+  s.focus_below = msj0 + 0.05;
+  std::vector<char> near(in.points.size(), 0), of_bad(in.points.size(), 0);
+  std::size_t bad = 0;
+  for(std::size_t h = 0; h < sj0.size(); ++h)
+    if(sj0[h] < s.focus_below) { ++bad; for(std::size_t v : in.hexes[h]) of_bad[v] = 1; }
+  for(std::size_t v = 0; v < near.size(); ++v)
+    if(of_bad[v])
+      for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+        for(std::size_t w : in.hexes[c->hex]) near[w] = 1;
+  HMO_CHECK(bad > 0 && bad < sj0.size() / 4);
+
+  std::vector<Vec3> p = in.points;
+  const Asj_smoothing_report rep = HMO::internal::smooth_for_average_quality(topo, &target, p, s);
+  std::size_t moved = 0, moved_far = 0;
+  for(std::size_t v = 0; v < p.size(); ++v)
+    if(p[v] != in.points[v]) { ++moved; if(!near[v]) ++moved_far; }
+  // the same pass over the whole mesh moves more
+  Asj_smoothing_settings all = s;
+  all.focus_below = std::numeric_limits<double>::infinity();
+  std::vector<Vec3> q = in.points;
+  HMO::internal::smooth_for_average_quality(topo, &target, q, all);
+  std::size_t moved_all = 0;
+  for(std::size_t v = 0; v < q.size(); ++v) moved_all += q[v] != in.points[v];
+  std::cout << "focus: " << bad << " hexes below " << s.focus_below << ", " << moved << " vertices moved ("
+            << moved_far << " away from them), " << moved_all << " without focus; MSJ " << msj0 << " -> "
+            << rep.msj_after << std::endl;
+  HMO_CHECK(moved > 0);
+  HMO_CHECK(moved_far == 0);
+  HMO_CHECK(moved_all > moved);
+  HMO_CHECK(rep.msj_after >= msj0);
+  HMO_CHECK(rep.asj_after > rep.asj_before);
+}
+
 void test_curved()
 {
   const Hex_mesh_arrays in = perturbed_shell(4, 8, 4, 0.3, 11);
@@ -244,6 +295,7 @@ void test_shared_mesh()
 int main(int, char** argv)
 {
   test_cube();
+  test_focus();
   test_curved();
   test_shared_mesh();
   return hmo_test::report(argv[0]);
