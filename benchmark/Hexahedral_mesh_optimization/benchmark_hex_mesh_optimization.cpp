@@ -5,7 +5,10 @@
 //   --untangle : `CGAL::untangle_hex_mesh` on every untangling input, plus
 //                stress tests made by perturbing the valid meshes of
 //                stress-base/ until at least 80 % of their hexes are inverted
-//                (fixed seed, so runs compare);
+//                (fixed seed, so runs compare), twice: the interior vertices
+//                only (the boundary stays on the surface; the paper's fandisk
+//                error, 0.0048, suggests that is what it did) and every
+//                vertex (the boundary must also be found again);
 //   default    : the whole pipeline `CGAL::optimize_hex_mesh` (untangle,
 //                pull-back, MSJ stages, ASJ smoothing) on the same inputs and
 //                on the valid meshes of amips/ and low-quality/. On a row
@@ -65,23 +68,29 @@ static std::string fig(const std::string& msj, const std::string& asj, const std
   return msj + " / " + asj + " / " + err;
 }
 
-/// Perturbs every vertex by a random vector of growing amplitude until at
-/// least `fraction` of the hexes are inverted.
-static std::size_t perturb(Mesh& m, double fraction, unsigned seed)
+/// Perturbs vertices by random vectors of growing amplitude until at least
+/// `fraction` of the hexes are inverted: every vertex, or (`interior_only`)
+/// only the interior ones, so that the boundary stays on the surface.
+static std::size_t perturb(Mesh& m, double fraction, unsigned seed, bool interior_only)
 {
   const Mesh base = m;
   double mean = 0.;
   for(const auto& h : m.hexahedra) mean += std::sqrt(CGAL::squared_distance(m.points[h[0]], m.points[h[1]]));
   mean /= m.hexahedra.size();
+  std::vector<char> on_boundary(m.points.size(), 0);
+  if(interior_only)
+    for(std::size_t v : HMO::internal::extract_boundary(HMO::internal::make_hex_mesh_arrays(m, K())).vertices)
+      on_boundary[v] = 1;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1., 1.);
-  for(double amp = 0.3;; amp *= 1.15)
+  for(double amp = 0.3; amp < 100.; amp *= 1.15)
   {
     for(std::size_t i = 0; i < m.points.size(); ++i)
-      m.points[i] = base.points[i] + amp * mean * K::Vector_3(u(rng), u(rng), u(rng));
+      if(!on_boundary[i]) m.points[i] = base.points[i] + amp * mean * K::Vector_3(u(rng), u(rng), u(rng));
     const auto q = CGAL::hex_mesh_quality(m);
     if(q.inverted >= fraction * m.hexahedra.size()) return q.inverted;
   }
+  return CGAL::hex_mesh_quality(m).inverted;
 }
 
 int main(int argc, char** argv)
@@ -106,6 +115,7 @@ int main(int argc, char** argv)
     "edge-cone/block_in.mesh", "edge-cone/bunny_in.mesh", "edge-cone/bust_in.mesh", "edge-cone/cap_in.mesh",
     "edge-cone/hanger_stresstest_in.mesh", "edge-cone/impeller_stresstest_in.mesh",
     "inverted/bunny_dualsheet.vtk", "inverted/bunny_dualsheet.vtk+obj", "inverted/hex_torus.vtk",
+    "stress-base/fandisk.vtk+interior", "stress-base/kitty.vtk+interior", "stress-base/hanger.vtk+interior",
     "stress-base/fandisk.vtk", "stress-base/kitty.vtk", "stress-base/hanger.vtk"};
   if(!untangle_only)
     for(const char* n : {"amips/rockerarm_li12.vtk", "amips/fertility_gregson11.mesh", "low-quality/kitten_with_bifur_2.mesh",
@@ -119,8 +129,11 @@ int main(int argc, char** argv)
   for(const std::string& row : inputs)
   {
     if(!only.empty() && row.find(only) == std::string::npos) continue;
-    const bool with_obj = row.size() > 4 && row.compare(row.size() - 4, 4, "+obj") == 0;
-    const std::string name = with_obj ? row.substr(0, row.size() - 4) : row;
+    const auto ends_with = [&row](const std::string& tail) {
+      return row.size() > tail.size() && row.compare(row.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    const bool with_obj = ends_with("+obj"), interior_only = ends_with("+interior");
+    const std::string name = row.substr(0, row.find('+'));
     Mesh mesh;
     CGAL::IO::Hex_mesh_io_error err;
     std::vector<std::string> warnings;
@@ -135,7 +148,7 @@ int main(int argc, char** argv)
     {
       // the surface error of a stress test is measured against the unperturbed mesh
       HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(mesh, K()), reference);
-      perturb(mesh, 0.8, 1);
+      perturb(mesh, 0.8, 1, interior_only);
     }
     const auto it = published.find(name);
     double tolerance = 0.005;
@@ -168,7 +181,7 @@ int main(int argc, char** argv)
       HMO::internal::surface_distance(HMO::internal::make_hex_mesh_arrays(mesh, K()), measured_against);
     char line[1024];
     std::snprintf(line, sizeof line, "| %s%s | %zu | %zu | %zu | %.3f | %.3f | %.4f (%.4f) | %.2f | %s |",
-                  name.c_str(), stress ? " (perturbed)" : (with_obj ? " (reference .obj)" : ""), mesh.hexahedra.size(), r.inverted_before,
+                  name.c_str(), stress ? (interior_only ? " (interior perturbed)" : " (all vertices perturbed)") : (with_obj ? " (reference .obj)" : ""), mesh.hexahedra.size(), r.inverted_before,
                   r.inverted_after, r.msj_after, r.asj_after, r.surface_error, sd.metro_relative(), r.seconds, stages.c_str());
     std::cout << line << ' '
               << (it != published.end() ? fig(it->second.row[4], it->second.row[5], it->second.row[6]) : "–") << " | "
