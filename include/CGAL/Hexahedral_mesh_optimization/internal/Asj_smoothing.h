@@ -78,8 +78,8 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <algorithm>
-#include <chrono>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <functional>

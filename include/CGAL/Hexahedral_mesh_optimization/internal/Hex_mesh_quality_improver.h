@@ -192,15 +192,14 @@ public:
     msj_stages(topo, ts, ideal, guard, guard_tolerance, start, 0.55 * m_s.time_limit_seconds, true, mesh, res);
     restoration_stage(topo, guard, ts, home, mesh, res);
 
-    // ---- ASJ smoothing and MSJ stages in turn while the MSJ rises: the
-    // smoothing reshapes the bulk, which frees elements the max-min
-    // smoothing had stalled on (fertility_gregson11: 0.670 → 0.684 → 0.697
-    // in two turns; Dolphin_2: 0.292 → 0.47). The guard is sampled, so each
-    // turn can let the error creep a little past the tolerance (cap_in:
-    // 0.0062 → 0.0098 over four turns): when the measured error ends above
-    // max(tolerance, the error before the turns), the surface restoration
-    // runs, and if the error is still above, the turn (or the final
-    // smoothing) is undone.
+    // ---- ASJ smoothing and max-min smoothing in turn while the MSJ rises:
+    // the ASJ pass reshapes the neighbourhood of the worst elements, which
+    // frees elements the max-min smoothing had stalled on. The guard is
+    // sampled, so each turn can let the error creep a little past the
+    // tolerance (cap_in: 0.0062 → 0.0098 over four turns): when the measured
+    // error ends above max(tolerance, the error before the turns), the
+    // surface restoration runs, and if the error is still above, the turn is
+    // undone (the final smoothing: see there).
     // the error of the current state when known (measuring it takes up to
     // 1.6 s on an 11k-hex mesh: it is not measured twice); negative: unknown
     const auto check_start = Clock::now();
@@ -261,8 +260,11 @@ public:
     {
       const std::vector<Vec3> saved = mesh.points;
       const double before = quality_statistics(mesh).msj;
+      Asj_smoothing_settings one_focused_pass;
+      one_focused_pass.max_passes = 1;
+      one_focused_pass.focus_below = before + 0.2;
       asj_stage(topo, ts, guard, turn_guard * guard_tolerance, (std::min)(0.1 * budget, turns_end - elapsed(start)),
-                mesh, res, drop, 1, before + 0.2);
+                mesh, res, one_focused_pass, drop);
       max_min_stage(topo, ts, guard, turn_guard * guard_tolerance, turns_end - elapsed(start), mesh, res);
       const double after = quality_statistics(mesh).msj;
       if(drop > 0. && after < before)
@@ -299,15 +301,18 @@ public:
       // the boundary back and loses much of the ASJ gained, block_in: 0.891
       // → 0.848; half the guard still ended 4e-7 above the bound there.)
       std::vector<Vec3> saved = mesh.points;
+      const double error_before = current_error; // negative: unknown
       asj_stage(topo, ts, guard, turn_guard * guard_tolerance, 0.6 * (checks_end - elapsed(start)), mesh, res);
       const bool kept = within_bound(saved, "the final ASJ smoothing", false);
       if(kept) saved = mesh.points;
       if(elapsed(start) < checks_end - 0.5)
       {
-        asj_stage(topo, ts, guard, turn_guard * guard_tolerance, checks_end - elapsed(start), mesh, res, 0., 0,
-                  std::numeric_limits<double>::infinity(), kept);
+        Asj_smoothing_settings second;
+        second.move_boundary = kept;
+        asj_stage(topo, ts, guard, turn_guard * guard_tolerance, checks_end - elapsed(start), mesh, res, second);
+        // with the boundary fixed, the surface error is the one before
         if(kept) within_bound(saved, "the final ASJ smoothing", true);
-        else current_error = scaled_error(mesh, reference, nz);
+        else current_error = error_before;
       }
     }
 
@@ -324,22 +329,20 @@ public:
 private:
   void asj_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const Surface_guard& guard,
                  double guard_tolerance, double seconds, Hex_mesh_arrays& mesh,
-                 Optimization_result& res, double floor_drop = 0., int max_passes = 0,
-                 double focus_below = std::numeric_limits<double>::infinity(), bool move_boundary = true)
+                 Optimization_result& res, Asj_smoothing_settings as = Asj_smoothing_settings(),
+                 double floor_drop = 0.)
   {
+    // `as` brings the caller's choices (passes, focus, fixed boundary);
+    // floor, guard and time are set here
     const auto t = Clock::now();
     const Quality_statistics q = quality_statistics(mesh);
     m_visitor.stage_started("asj", 0);
-    Asj_smoothing_settings as;
     as.min_sj_floor = q.msj - floor_drop;
     as.max_surface_deviation = guard_tolerance;
     as.local_deviation = [&guard](const std::vector<Vec3>& p, std::size_t v, const Vec3& x) {
       return guard.local_deviations(p, v, x);
     };
     as.time_limit_seconds = (std::max)(1., seconds);
-    if(max_passes > 0) as.max_passes = max_passes;
-    as.focus_below = focus_below;
-    as.move_boundary = move_boundary;
     const Asj_smoothing_report ar = smooth_for_average_quality(topo, &ts, mesh.points, as);
     std::ostringstream d;
     d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << ", MSJ kept at " << ar.msj_after;
