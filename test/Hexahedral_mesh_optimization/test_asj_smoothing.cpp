@@ -6,7 +6,10 @@
 // stays on the target (face vertices in their planes, edge vertices on their
 // lines, corners unmoved; a fixed boundary without a target surface), and on
 // a curved grid the surface error stays within the deviation bound; a
-// focused pass moves only vertices near the worst hexes. With the
+// focused pass moves only vertices near the worst hexes; the parallel
+// (coloured) passes give the same result on one thread as on all of them
+// and keep the floor; the start-deviation shortcut spares most calls to the
+// surface guard and keeps the surface error within its bound. With the
 // shared data, a real mesh gains ASJ without losing MSJ.
 
 #include "test_meshes.h"
@@ -15,10 +18,16 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Asj_smoothing.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -260,6 +269,100 @@ void test_curved()
   HMO_CHECK(off == 0);
 }
 
+// The parallel passes: a fixed number of passes gives the same positions
+// twice, and on one thread as on all; no element ends below its floor; the
+// result is comparable with the one-vertex-at-a-time passes in index order.
+void test_parallel()
+{
+  const Hex_mesh_arrays in = perturbed_shell(6, 12, 6, 0.2, 5);
+  const std::vector<double> sj0 = HMO::internal::scaled_jacobians(in);
+  const HMO::internal::Quality_statistics q0 = HMO::internal::quality_statistics(sj0, in.points.size());
+  HMO_CHECK(q0.inverted == 0);
+  const Hex_mesh_topology topo(in);
+  const Target_surface target(in);
+  Asj_smoothing_settings s;
+  s.min_sj_floor = 0.5 * (q0.msj + q0.asj);
+  s.max_surface_deviation = 1e-3 * bbox_diagonal(in.points);
+  s.max_passes = 4;
+  s.min_asj_gain = -1.;
+  s.time_limit_seconds = 1e9;
+  auto run = [&](const Asj_smoothing_settings& settings, Asj_smoothing_report& r) {
+    std::vector<Vec3> p = in.points;
+    r = HMO::internal::smooth_for_average_quality(topo, &target, p, settings);
+    return p;
+  };
+  Asj_smoothing_report r1, r2, r3, rs;
+  const std::vector<Vec3> p1 = run(s, r1);
+  const std::vector<Vec3> p2 = run(s, r2);
+  HMO_CHECK(p1 == p2);
+#ifdef CGAL_LINKED_WITH_TBB
+  {
+    tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    const std::vector<Vec3> p3 = run(s, r3);
+    HMO_CHECK(p1 == p3);
+  }
+#endif
+  Asj_smoothing_settings sequential = s;
+  sequential.parallel = false;
+  run(sequential, rs);
+  std::cout << "parallel: ASJ " << r1.asj_before << " -> " << r1.asj_after << " (" << r1.accepted_moves
+            << " moves), one at a time " << rs.asj_after << " (" << rs.accepted_moves << " moves)" << std::endl;
+  HMO_CHECK(r1.passes == 4);
+  HMO_CHECK(r1.asj_after > r1.asj_before + 0.01);
+  HMO_CHECK(std::abs(r1.asj_after - rs.asj_after) < 0.5 * (rs.asj_after - rs.asj_before));
+  Hex_mesh_arrays out = in;
+  out.points = p1;
+  const std::vector<double> sj1 = HMO::internal::scaled_jacobians(out);
+  std::size_t below = 0;
+  for(std::size_t h = 0; h < sj1.size(); ++h)
+    if(!(sj1[h] >= (std::min)(s.min_sj_floor, sj0[h]))) ++below;
+  HMO_CHECK(below == 0);
+}
+
+// The start-deviation shortcut: with the surface guard as `local_deviation`,
+// a move within the budget of the start boundary skips the guard. Far fewer
+// guard calls, a comparable ASJ, and the surface error within the guard's
+// tolerance (the shortcut's budget is below it).
+void test_shortcut()
+{
+  const Hex_mesh_arrays in = perturbed_shell(4, 8, 4, 0.3, 11);
+  const HMO::internal::Quality_statistics q0 = HMO::internal::quality_statistics(in);
+  const Hex_mesh_topology topo(in);
+  const Target_surface target(in);
+  const double diag = bbox_diagonal(in.points);
+  std::vector<Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::triangulate_boundary(target.boundary(), in.points, HMO::internal::Quad_split::diagonal_02, ref_points,
+                                      ref_tris);
+  const HMO::internal::Surface_guard guard(target.boundary(), ref_points, ref_tris, in.points);
+  std::atomic<std::size_t> calls(0);
+  Asj_smoothing_settings s;
+  s.min_sj_floor = q0.msj;
+  s.max_surface_deviation = 1e-3 * diag;
+  s.max_passes = 6;
+  s.local_deviation = [&](const std::vector<Vec3>& p, std::size_t v, const Vec3& x) {
+    ++calls;
+    return guard.local_deviations(p, v, x);
+  };
+  std::vector<Vec3> p = in.points;
+  const Asj_smoothing_report guarded = HMO::internal::smooth_for_average_quality(topo, &target, p, s);
+  const std::size_t guard_calls = calls;
+  calls = 0;
+  s.start_deviation_budget = 1e-3 * diag;
+  std::vector<Vec3> q = in.points;
+  const Asj_smoothing_report shortcut = HMO::internal::smooth_for_average_quality(topo, &target, q, s);
+  Hex_mesh_arrays out = in;
+  out.points = q;
+  const double err = HMO::internal::relative_surface_error(out, in);
+  std::cout << "shortcut: " << guard_calls << " guard calls, ASJ " << guarded.asj_after << "; with the shortcut "
+            << calls << " calls, ASJ " << shortcut.asj_after << ", surface error " << err << std::endl;
+  HMO_CHECK(guarded.asj_after > guarded.asj_before + 0.01);
+  HMO_CHECK(calls < guard_calls / 2);
+  HMO_CHECK(shortcut.asj_after > shortcut.asj_before + 0.01);
+  HMO_CHECK(shortcut.msj_after >= q0.msj);
+  HMO_CHECK(err < 2e-3); // sample-based bound of 1e-3
+}
+
 void test_shared_mesh()
 {
   const std::string dir = hmo_test::shared_data_dir();
@@ -297,6 +400,8 @@ int main(int, char** argv)
   test_cube();
   test_focus();
   test_curved();
+  test_parallel();
+  test_shortcut();
   test_shared_mesh();
   return hmo_test::report(argv[0]);
 }

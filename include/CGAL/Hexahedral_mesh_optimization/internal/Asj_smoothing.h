@@ -33,6 +33,13 @@
 // stops when a pass raises the ASJ by less than `min_asj_gain`, after
 // `max_passes` passes or at the time limit.
 //
+// Parallel passes (`parallel`, with TBB): the vertices are coloured so that
+// two of one colour never touch the same hex or read each other's boundary
+// quads (`colour_vertices`); a pass visits the colours in turn, the vertices
+// of one colour on all threads. The result does not depend on the number of
+// threads. bunny_in at MSJ 0.73, 8 s on 2 cores: 24 passes, ASJ 0.938 ->
+// 0.962, against 14 passes, 0.956, one vertex at a time.
+//
 // Boundary, with a target surface: a regular vertex moves in the tangent
 // plane of the reference at its place and is projected onto the reference
 // (closest point, `Target_surface::constraint_at`); a sharp vertex slides on
@@ -77,8 +84,14 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -137,12 +150,30 @@ struct Asj_smoothing_settings
   /// `Surface_guard::local_deviations`): each direction with v at x must
   /// stay within max(`max_surface_deviation`, its value with v where it is).
   Local_deviation local_deviation;
+  /// With `local_deviation` given: a move that passes the built-in test
+  /// against the boundary as the stage received it, with this distance
+  /// instead of `max_surface_deviation`, is accepted without calling
+  /// `local_deviation`. Set it to what the surface error may still grow by
+  /// (bound − error at the start, in mesh units): by the triangle
+  /// inequality such a move keeps the error within the bound (up to the
+  /// sampling of both tests). The built-in test costs a few point-quad
+  /// distances; the guard's AABB queries made an ASJ pass 4-6× slower
+  /// (bunny_in at MSJ 0.68, 8 s: 4 passes, ASJ 0.925 -> 0.937 with the
+  /// guard alone; 15 passes, 0.951 with this shortcut, error 0.0036 both).
+  /// 0 disables the shortcut.
+  double start_deviation_budget = 0.;
   /// When finite, only the vertices of the hexes whose scaled Jacobian is
   /// below it, and of the hexes around those, are visited (then, as always,
   /// those near a move): the turns of the quality improver reshape the
   /// neighbourhood of the worst elements, not the whole mesh (bunny_in: a
   /// pass over all 37.7k hexes takes 2 s).
   double focus_below = std::numeric_limits<double>::infinity();
+  /// Visit the vertices colour by colour, those of one colour on TBB's
+  /// threads (when linked with TBB; see `colour_vertices`); otherwise one at
+  /// a time in index order. Index order suits the short focused passes
+  /// better: fertility_gregson11's turns went on from MSJ 0.70 to 0.748 in
+  /// index order, and stalled at 0.701 in colour order.
+  bool parallel = true;
 };
 
 struct Asj_smoothing_report
@@ -418,7 +449,7 @@ public:
     // for the built-in deviation: the boundary quads within two rings of
     // each moving boundary vertex, its own first
     m_ring_off.assign(nv + 1, 0);
-    if(m_check_surface && !s.local_deviation)
+    if(m_check_surface && (!s.local_deviation || s.start_deviation_budget > 0.))
     {
       std::vector<std::size_t> ring;
       for(std::size_t v = 0; v < nv; ++v)
@@ -450,8 +481,19 @@ public:
     std::size_t maxdeg = 0;
     for(std::size_t v = 0; v < nv; ++v)
       maxdeg = (std::max)(maxdeg, std::size_t(topo.vertex_corners_end(v) - topo.vertex_corners_begin(v)));
-    m_trial.resize(9 * maxdeg);
+    m_trial_size = 9 * maxdeg;
     m_step.assign(nv, 0.1);
+#ifdef CGAL_LINKED_WITH_TBB
+    if(s.parallel)
+      colour_vertices();
+    else
+#endif
+    {
+      // one "colour": every vertex that may move, in index order
+      m_colours.resize(1);
+      for(std::size_t v = 0; v < nv; ++v)
+        if(m_kind[v] != FIXED) m_colours[0].push_back(v);
+    }
   }
 
   Asj_smoothing_report run()
@@ -466,7 +508,7 @@ public:
     rep.asj_before = sum / double(nh);
     rep.msj_before = msj;
 
-    std::vector<unsigned char> active(nv, 1), next(nv, 0);
+    std::vector<unsigned char> active(nv, 1), next(nv, 0), moved(nv, 0);
     if(std::isfinite(m_s.focus_below))
     {
       // the vertices of the hexes below the focus value, then one ring of hexes more
@@ -493,21 +535,27 @@ public:
       for(std::size_t h = 0; h < nh; ++h) m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa);
       if(elapsed() > m_s.time_limit_seconds) break;
       ++rep.passes;
-      std::fill(next.begin(), next.end(), 0);
-      bool out_of_time = false;
-      for(std::size_t v = 0; v < nv && !out_of_time; ++v)
+      // one colour at a time, its vertices in parallel (a pass takes up to
+      // seconds on large meshes: the clock is read within it too)
+      std::fill(moved.begin(), moved.end(), 0);
+      std::atomic<bool> out_of_time(false);
+      for(const std::vector<std::size_t>& vertices : m_colours)
       {
-        // a pass takes up to seconds on large meshes: the clock is read
-        // within it too
-        if(v % 512 == 511 && elapsed() > m_s.time_limit_seconds) out_of_time = true;
-        if(!active[v]) continue;
-        if(optimize_vertex(v))
-        {
-          ++rep.accepted_moves;
-          for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-            for(std::size_t w : m_topo.hexes()[c->hex])
-              if(m_kind[w] != FIXED) next[w] = 1;
-        }
+        if(out_of_time) break;
+        for_each_vertex(vertices, [&](std::size_t v) {
+          if(!active[v] || out_of_time.load(std::memory_order_relaxed)) return;
+          if(optimize_vertex(v)) moved[v] = 1;
+          if(elapsed() > m_s.time_limit_seconds) out_of_time = true;
+        });
+      }
+      std::fill(next.begin(), next.end(), 0);
+      for(std::size_t v = 0; v < nv; ++v)
+      {
+        if(!moved[v]) continue;
+        ++rep.accepted_moves;
+        for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+          for(std::size_t w : m_topo.hexes()[c->hex])
+            if(m_kind[w] != FIXED) next[w] = 1;
       }
       active.swap(next);
       sum = 0.;
@@ -537,17 +585,85 @@ private:
     return c;
   }
 
+  // f(v) for each vertex of one colour: on the TBB threads when the package
+  // is linked with TBB and `parallel` is set (a colour's vertices move
+  // independently, so the result does not depend on the threads)
+  template <class F>
+  void for_each_vertex(const std::vector<std::size_t>& vertices, F f) const
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    if(m_s.parallel && m_colours.size() > 1)
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices.size(), 64),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for(std::size_t i = r.begin(); i != r.end(); ++i) f(vertices[i]);
+                        });
+      return;
+    }
+#endif
+    for(std::size_t v : vertices) f(v);
+  }
+
+  // scratch for the samples of the hexes around the vertex being moved, one
+  // per thread
+  double* trial_buffer() const
+  {
+    thread_local std::vector<double> buffer;
+    if(buffer.size() < m_trial_size) buffer.resize(m_trial_size);
+    return buffer.data();
+  }
+
+  // Colours the vertices that may move so that two of one colour can move
+  // at the same time: they share no hex (a move reads and writes the hexes
+  // around its vertex only) and, when both move on the boundary, neither is
+  // a vertex of a boundary quad around a quad neighbour of the other (the
+  // surface tests read the quads two rings out). Greedy, in vertex order;
+  // bunny_in: 27 colours.
+  void colour_vertices()
+  {
+    const std::size_t nv = m_topo.number_of_vertices();
+    const std::size_t none = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> colour(nv, none), stamp;
+    std::vector<std::size_t> near;
+    const auto& bf = m_topo.boundary_faces();
+    for(std::size_t v = 0; v < nv; ++v)
+    {
+      if(m_kind[v] == FIXED) continue;
+      near.clear();
+      for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+        for(std::size_t w : m_topo.hexes()[c->hex]) near.push_back(w);
+      if(m_kind[v] != FREE)
+        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
+          for(std::size_t u : bf[m_bq[k]])
+            for(std::size_t j = m_bq_off[u]; j < m_bq_off[u + 1]; ++j)
+              for(std::size_t w : bf[m_bq[j]]) near.push_back(w);
+      // smallest colour not used by a coloured vertex near v
+      for(std::size_t w : near)
+        if(w != v && colour[w] != none)
+        {
+          if(stamp.size() <= colour[w]) stamp.resize(colour[w] + 1, none);
+          stamp[colour[w]] = v;
+        }
+      std::size_t k = 0;
+      while(k < stamp.size() && stamp[k] == v) ++k;
+      colour[v] = k;
+      if(m_colours.size() <= k) m_colours.resize(k + 1);
+      m_colours[k].push_back(v);
+    }
+  }
+
   // The objective F_v with v at x, or -infinity when a hex falls below its
-  // floor; the samples are left in m_trial.
+  // floor; the samples are left in this thread's `trial_buffer()`.
   double evaluate(std::size_t v, const Vec3& x)
   {
+    double* trial = trial_buffer();
     double f = 0.;
     std::size_t k = 0;
     for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c, ++k)
     {
       std::array<Vec3, 8> p = corners(c->hex);
       p[c->local] = x;
-      double* s = &m_trial[9 * k];
+      double* s = trial + 9 * k;
       std::copy(&m_samples[9 * c->hex], &m_samples[9 * c->hex] + 9, s);
       asj_detail::update_samples(p, c->local, s);
       const double q = asj_detail::exact_minimum(s);
@@ -567,11 +683,12 @@ private:
 
   void commit(std::size_t v, const Vec3& x)
   {
+    const double* trial = trial_buffer();
     m_p[v] = x;
     std::size_t k = 0;
     for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c, ++k)
     {
-      const double* s = &m_trial[9 * k];
+      const double* s = trial + 9 * k;
       std::copy(s, s + 9, &m_samples[9 * c->hex]);
       m_sj[c->hex] = asj_detail::exact_minimum(s);
       m_value[c->hex] = asj_detail::soft_minimum(s, m_kappa);
@@ -634,9 +751,9 @@ private:
     return false;
   }
 
-  bool builtin_surface_test(std::size_t v, const Vec3& x) const
+  bool builtin_surface_test(std::size_t v, const Vec3& x, double tolerance) const
   {
-    const double tol2 = m_s.max_surface_deviation * m_s.max_surface_deviation;
+    const double tol2 = tolerance * tolerance;
     const auto& bf = m_topo.boundary_faces();
     for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
     {
@@ -666,7 +783,8 @@ private:
   bool surface_test(std::size_t v, const Vec3& x, Surface_deviation& allowed) const
   {
     if(!m_check_surface || m_kind[v] == FREE) return true;
-    if(!m_s.local_deviation) return builtin_surface_test(v, x);
+    if(!m_s.local_deviation) return builtin_surface_test(v, x, m_s.max_surface_deviation);
+    if(m_s.start_deviation_budget > 0. && builtin_surface_test(v, x, m_s.start_deviation_budget)) return true;
     if(allowed.to_reference < 0.) allowed = m_s.local_deviation(m_p, v, m_p[v]).bound(m_s.max_surface_deviation);
     return m_s.local_deviation(m_p, v, x).within(allowed);
   }
@@ -760,7 +878,11 @@ private:
   std::vector<std::size_t> m_bq_off, m_bq, m_ring_off, m_ring;
   bool m_check_surface = false;
   double m_kappa = 0.; // current sharpness of the objective
-  std::vector<double> m_samples, m_sj, m_floor, m_value, m_trial, m_step;
+  std::vector<double> m_samples, m_sj, m_floor, m_value, m_step;
+  std::size_t m_trial_size = 0;
+  // Gauss-Seidel order: the vertices that may move, grouped by colour (see
+  // `colour_vertices`)
+  std::vector<std::vector<std::size_t> > m_colours;
 };
 
 /// Raises the average scaled Jacobian of a valid mesh in place (see the top
