@@ -182,7 +182,7 @@ struct Asj_smoothing_report
   double msj_before = 0., msj_after = 0.;
   int passes = 0;
   std::size_t accepted_moves = 0;
-  double seconds = 0.; ///< processor time
+  double seconds = 0.; ///< wall-clock time
 };
 
 namespace asj_detail {
@@ -618,7 +618,7 @@ private:
   // around its vertex only) and, when both move on the boundary, neither is
   // a vertex of a boundary quad around a quad neighbour of the other (the
   // surface tests read the quads two rings out). Greedy, in vertex order;
-  // bunny_in: 27 colours.
+  // bunny_in: 21 colours of 2 to 3303 vertices (fertility_gregson11: 20).
   void colour_vertices()
   {
     const std::size_t nv = m_topo.number_of_vertices();
