@@ -189,7 +189,7 @@ public:
 
     // ---- MSJ stages, boundary moves bounded by the surface guard
     const double guard_tolerance = tolerance;
-    msj_stages(topo, ts, ideal, guard, guard_tolerance, start, 0.55 * m_s.time_limit_seconds, true, mesh, res);
+    msj_stages(topo, ts, ideal, guard, guard_tolerance, start, 0.55 * m_s.time_limit_seconds, mesh, res);
     restoration_stage(topo, guard, ts, home, mesh, res);
 
     // ---- ASJ smoothing and max-min smoothing in turn while the MSJ rises:
@@ -484,7 +484,7 @@ private:
 
   void msj_stages(const Hex_mesh_topology& topo, const Target_surface& ts, const Ideal_angles& ideal,
                   const Surface_guard& guard, double guard_tolerance, Clock::time_point start, double limit,
-                  bool edge_angle, Hex_mesh_arrays& mesh, Optimization_result& res)
+                  Hex_mesh_arrays& mesh, Optimization_result& res)
   {
     // `limit`: seconds after `start` by which the stages end
     const double target = (std::min)(m_s.target_msj, 1.);
@@ -525,7 +525,7 @@ private:
       // (even for a handful of elements: on fertility_gregson11 a pass on
       // the last element below 0.7 did not fix it, but the max-min smoothing
       // after it went from 0.691 to 0.697)
-      for(double gain = 1.; msj < t && gain >= 0.005 && m_s.edge_angle && edge_angle &&
+      for(double gain = 1.; msj < t && gain >= 0.005 && m_s.edge_angle &&
                             limit - elapsed(start) > 0.2 * limit;)
       {
         const double msj_pass = msj;
