@@ -86,7 +86,7 @@ inline const std::vector<Option_spec>& option_table()
      "draw the scaled Jacobian histogram before (and after, with OUTPUT) as SVG",
      [](O& o, const std::string& v, std::string&) { o.histogram_svg = v; return true; }},
     {"--untangle", nullptr,
-     "only untangle (edge-angle optimiser, then the barrier stage on what is left); "
+     "only untangle (barrier with the boundary fixed, edge-angle optimiser, then the barrier stage on what is left); "
      "default: the whole pipeline (untangle, pull-back, MSJ stages, ASJ smoothing)",
      [](O& o, const std::string&, std::string&) { o.untangle_only = true; return true; }},
     {"--target-msj", "X",

@@ -151,7 +151,7 @@ nothing better is found the input is returned as it was. The result's
     \cgalParamDefault{60}
   \cgalParamNEnd
   \cgalParamNBegin{barrier_fallback}
-    \cgalParamDescription{whether the barrier stage runs when the edge-angle stage leaves inverted elements}
+    \cgalParamDescription{whether the barrier stages run: with the boundary fixed before the edge-angle stage, and on what the edge-angle stage leaves}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`}
   \cgalParamNEnd

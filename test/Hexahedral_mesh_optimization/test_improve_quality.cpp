@@ -180,7 +180,7 @@ static void test_pipeline_on_tangled_mesh()
   HMO_CHECK_CLOSE(r.msj_after, recount_msj(m), 1e-12);
   // the untangling stages come first, the quality stages after
   HMO_CHECK(!r.stages.empty());
-  HMO_CHECK(r.stages.front().name == "edge-angle");
+  HMO_CHECK(r.stages.front().name == "interior");
   HMO_CHECK(r.stages.back().name == "asj");
   HMO_CHECK(CGAL::hex_mesh_surface_error(m, input) <= 0.01);
 }

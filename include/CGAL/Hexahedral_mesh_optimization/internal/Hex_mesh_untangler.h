@@ -13,15 +13,27 @@
 //   2. target surface Ω_t and feature classification (Target_surface.h);
 //      ideal angles from the connectivity, with the measured dihedral angle
 //      of Ω_t on feature edges (Ideal_angles.h);
-//   3. stage "edge-angle": the local optimiser of Algorithm 1
-//      (Local_optimizer.h);
-//   4. stage "barrier": on what is left, the foldover-free energy
+//   3. stage "interior": the foldover-free energy (Barrier_untangler.h) on
+//      regions around the inverted hexes with every boundary vertex fixed —
+//      what the interior alone can untangle is untangled without moving the
+//      surface. Measured: cap_in 50 → 0 inverted in 0.55 s,
+//      impeller_stresstest 8857 → 0 in 0.9 s, block_in 31 → 0, bust_in
+//      30 → 2; surface error < 0.0001 of the diagonal where it clears all
+//      (before, through the edge-angle optimiser with α, β relaxed and the
+//      barrier with a soft boundary: cap_in 0.0085, impeller 0.0019 — a
+//      vertex of cap_in ended 3 mean edges from its home, and the quality
+//      stages' surface guard then missed the crease it had uncovered; the
+//      whole pipeline ended at 0.0065 and 0.0010 for bounds of 0.0053 and
+//      0.0005);
+//   4. stage "edge-angle": the local optimiser of Algorithm 1
+//      (Local_optimizer.h) on what is left;
+//   5. stage "barrier": on what is left, the foldover-free energy
 //      (Barrier_untangler.h), region by region, each result kept only if the
 //      region's inverted count does not rise;
-//   5. stage "surface": the boundary pulled back toward the target surface
+//   6. stage "surface": the boundary pulled back toward the target surface
 //      by the same energy with a true barrier (nothing can invert), see
 //      pull_back_to_surface();
-//   6. scale back; if the result is worse than the input (more inverted, or
+//   7. scale back; if the result is worse than the input (more inverted, or
 //      as many with a lower MSJ), the input positions are kept.
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
@@ -190,7 +202,25 @@ public:
 
     const Ideal_angles ideal = ideal_angles_on_target(topo, *ts, mesh.points);
 
-    // ---- stage 1: the edge-angle local optimiser
+    // ---- stage "interior": the barrier with the boundary fixed
+    if(m_s.barrier_fallback && q0.inverted > 0)
+    {
+      const auto t = Clock::now();
+      Stage_report sr;
+      sr.name = "interior";
+      sr.inverted_before = q0.inverted;
+      m_visitor.stage_started(sr.name, sr.inverted_before);
+      untangle_interior(topo, ts->boundary(), mesh, start);
+      sr.inverted_after = count_inverted(mesh);
+      sr.msj_after = quality_statistics(mesh).msj;
+      sr.seconds = since(t);
+      sr.rounds = 1;
+      sr.details = "foldover-free energy, interior vertices only";
+      res.stages.push_back(sr);
+      m_visitor.stage_finished(sr);
+    }
+
+    // ---- stage "edge-angle": the local optimiser of Algorithm 1
     {
       const auto t = Clock::now();
       Local_optimizer opt(topo, ideal,
@@ -232,7 +262,7 @@ public:
       m_visitor.stage_finished(sr);
     }
 
-    // ---- stage 2: barrier fallback on what is left
+    // ---- stage "barrier": on what is left, the surface free to relax
     if(m_s.barrier_fallback && count_inverted(mesh) > 0)
     {
       const auto t = Clock::now();
@@ -294,7 +324,7 @@ public:
       m_visitor.stage_finished(sr);
     }
 
-    // ---- stage 3: boundary back toward the target surface
+    // ---- stage "surface": boundary back toward the target surface
     {
       const auto t = Clock::now();
       Stage_report sr;
@@ -323,6 +353,42 @@ public:
   }
 
 private:
+  /// The foldover-free energy on regions of 3 rings around the inverted
+  /// hexes with every boundary vertex fixed: whatever the interior alone can
+  /// untangle is untangled without moving the surface. (A region's result is
+  /// kept only if its inverted count does not rise.)
+  void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
+                         std::chrono::steady_clock::time_point start) const
+  {
+    std::vector<std::size_t> bad;
+    for(std::size_t h = 0; h < mesh.hexes.size(); ++h)
+      if(scaled_jacobian(mesh, h) <= 0.) bad.push_back(h);
+    const std::vector<Boundary_constraint> no_constraints(mesh.points.size());
+    const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(0.5 * m_s.time_limit_seconds));
+    for(Local_region region : extract_local_regions(topo, bad, 3))
+    {
+      std::vector<std::size_t> interior;
+      for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
+      if(interior.empty()) continue;
+      region.free_vertices.swap(interior);
+      auto count = [&] {
+        std::size_t n = 0;
+        for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
+        return n;
+      };
+      const std::size_t before = count();
+      if(before == 0) continue;
+      std::vector<Vec3> saved(region.free_vertices.size());
+      for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
+      Barrier_untangler b(topo, region, no_constraints, 0.);
+      b.set_deadline(deadline);
+      b.run(mesh.points);
+      if(count() > before)
+        for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
+    }
+  }
+
   static std::size_t count_inverted(const Hex_mesh_arrays& m)
   {
     std::size_t n = 0;
