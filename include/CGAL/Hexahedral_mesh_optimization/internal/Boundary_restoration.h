@@ -46,6 +46,10 @@ struct Boundary_restoration_settings
 {
   /// vertices whose surface deviation is at most this are left alone (mesh units)
   double threshold = 0.;
+  /// vertices at most this far from home are home (mesh units): after an
+  /// untangling that kept the boundary fixed, all of them are, up to
+  /// rounding, and visiting them cost impeller_stresstest 3 s per stage
+  double home_distance = 0.;
   /// no hex may fall below min(floor, its minimum before the move)
   double floor = 0.;
   int max_sweeps = 8;
@@ -89,7 +93,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
     for(std::size_t v : boundary_vertices)
     {
       const double d = squared_norm(home[v] - points[v]);
-      if(active[v] && d > 0.) order.push_back({-d, v});
+      if(active[v] && d > s.home_distance * s.home_distance) order.push_back({-d, v});
     }
     if(order.empty()) break;
     std::sort(order.begin(), order.end());
