@@ -207,7 +207,13 @@ public:
     //   margin 0.8: fertility_gregson11 MSJ 0.688 at the end (its stages end
     //               at 0.60 instead of 0.67, and the turns do not make up for
     //               it)
-    guard.set_dense_sampling_above(0.7 * tolerance);
+    // the error before the stages: whether they may cause an excess at all
+    // (after an untangling that left the boundary off the surface they
+    // cannot: bunny_dualsheet, 0.017 for a tolerance of 0.005; there the
+    // fine sampling only costs time, MSJ 0.319 → 0.237, and a second run
+    // too)
+    const bool within_before_stages = scaled_error(mesh, reference, nz) <= m_s.surface_tolerance;
+    if(within_before_stages) guard.set_dense_sampling_above(0.7 * tolerance);
     // the error of the current state when known (measuring it takes up to
     // 1.6 s on an 11k-hex mesh: it is not measured twice); negative: unknown
     double current_error = -1., check_seconds = 0.;
@@ -223,7 +229,7 @@ public:
       const auto t = Clock::now();
       run_msj_stages(msj_guard_margin, 0.55 * m_s.time_limit_seconds);
       const double first_seconds = seconds_since(t);
-      if(current_error > m_s.surface_tolerance && elapsed(start) < 0.6 * m_s.time_limit_seconds)
+      if(within_before_stages && current_error > m_s.surface_tolerance && elapsed(start) < 0.6 * m_s.time_limit_seconds)
       {
         const std::vector<Vec3> first = mesh.points;
         const double first_error = current_error;
@@ -372,8 +378,10 @@ public:
         second.move_boundary = kept;
         second.start_deviation_budget = error_budget(turn_guard);
         asj_stage(topo, ts, guard, turn_guard * tolerance, checks_end - elapsed(start), mesh, res, second);
-        // with the boundary fixed, the surface error is the one before
-        if(kept) within_bound(saved, "the final ASJ smoothing", true);
+        // with the boundary fixed, the surface error is the one before;
+        // otherwise the second run is undone if it ends above the bound (a
+        // restoration instead lost hanger_stresstest's ASJ, 0.99 → 0.959)
+        if(kept) within_bound(saved, "the second run of the final ASJ smoothing", false);
         else current_error = error_before;
       }
     }

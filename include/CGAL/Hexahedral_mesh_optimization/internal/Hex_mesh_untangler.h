@@ -355,8 +355,9 @@ public:
 private:
   /// The foldover-free energy on regions of 3 rings around the inverted
   /// hexes with every boundary vertex fixed: whatever the interior alone can
-  /// untangle is untangled without moving the surface. (A region's result is
-  /// kept only if its inverted count does not rise.)
+  /// untangle is untangled without moving the surface. A region's result is
+  /// kept only if it lowers its inverted count: where the interior cannot
+  /// help, the next stages start from the input as it was.
   void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
                          std::chrono::steady_clock::time_point start) const
   {
@@ -384,7 +385,7 @@ private:
       Barrier_untangler b(topo, region, no_constraints, 0.);
       b.set_deadline(deadline);
       b.run(mesh.points);
-      if(count() > before)
+      if(count() >= before)
         for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
     }
   }
