@@ -112,10 +112,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
       for(double step = 1.; step >= 0.125 && !done; step *= 0.5)
       {
         const Vec3 y = x + step * (home[v] - x);
-        // (written so that a NaN fails: two vertices moved onto the same
-        // home, the projection of both onto a user's reference, make a
-        // zero-length edge whose scaled Jacobian is NaN; bunny_dualsheet
-        // with bunny_reference.obj came out with a degenerate hex)
+        // (written so that a NaN fails, as a zero-length edge would give)
         if(!(probe.local_minimum(points, v, y) >= floor)) continue;
         if(!guard.local_deviations(points, v, y).within(dev)) continue;
         points[v] = y;

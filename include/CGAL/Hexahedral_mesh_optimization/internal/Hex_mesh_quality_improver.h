@@ -277,7 +277,6 @@ public:
     auto error_budget = [&](double factor) {
       return current_error >= 0. ? factor * (std::max)(0., error_bound - current_error) * diagonal * nz.scale : 0.;
     };
-    auto report_undone = [&](const std::string& what, const std::string& why) { report_check(res, mesh, what, why); };
     auto within_bound = [&](const std::vector<Vec3>& saved, const char* what, bool restore) {
       current_error = scaled_error(mesh, reference, nz);
       if(current_error <= error_bound) return true;
@@ -293,7 +292,7 @@ public:
       current_error = -1.;
       std::ostringstream d;
       d << "surface error " << e << " above " << error_bound;
-      report_undone(what, d.str());
+      report_check(res, mesh, what, d.str());
       return false;
     };
     // Time: what a last check can take (two error measurements around a
@@ -335,7 +334,7 @@ public:
       if(drop > 0. && after < before)
       {
         mesh.points = saved;
-        report_undone("the last ASJ + max-min turn with a lowered floor", "MSJ " + std::to_string(after) + " below " +
+        report_check(res, mesh, "the last ASJ + max-min turn with a lowered floor", "MSJ " + std::to_string(after) + " below " +
                       std::to_string(before));
         break;
       }

@@ -289,30 +289,17 @@ public:
                                       std::chrono::duration<double>(m_s.time_limit_seconds));
       for(std::size_t pass = 0; pass < weights.size() && Clock::now() < deadline; ++pass)
       {
-        std::vector<std::size_t> bad;
-        for(std::size_t h = 0; h < mesh.hexes.size(); ++h)
-          if(scaled_jacobian(mesh, h) <= 0.) bad.push_back(h);
+        const std::vector<std::size_t> bad = inverted_hexes(mesh);
         if(bad.empty()) break;
         ++sr.rounds;
         std::vector<Boundary_constraint> bc;
         ts->update_constraints(mesh.points, bc);
         for(const Local_region& region : extract_local_regions(topo, bad, 2 + int(pass)))
         {
-          auto count = [&] {
-            std::size_t n = 0;
-            for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
-            return n;
-          };
-          const std::size_t before = count();
-          if(before == 0) continue;
-          std::vector<Vec3> saved(region.free_vertices.size());
-          for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
           Barrier_untangler b(topo, region, bc, weights[pass]);
           b.set_sliding_weight(0.1 * weights[pass]);
           b.set_deadline(deadline);
-          b.run(mesh.points);
-          if(count() > before)
-            for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
+          run_on_region(b, region, mesh, false);
         }
         m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
       }
@@ -361,41 +348,49 @@ private:
   void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
                          std::chrono::steady_clock::time_point start) const
   {
-    std::vector<std::size_t> bad;
-    for(std::size_t h = 0; h < mesh.hexes.size(); ++h)
-      if(scaled_jacobian(mesh, h) <= 0.) bad.push_back(h);
     const std::vector<Boundary_constraint> no_constraints(mesh.points.size());
     const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                     std::chrono::duration<double>(0.5 * m_s.time_limit_seconds));
-    for(Local_region region : extract_local_regions(topo, bad, 3))
+    for(Local_region region : extract_local_regions(topo, inverted_hexes(mesh), 3))
     {
       std::vector<std::size_t> interior;
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       if(interior.empty()) continue;
       region.free_vertices.swap(interior);
-      auto count = [&] {
-        std::size_t n = 0;
-        for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
-        return n;
-      };
-      const std::size_t before = count();
-      if(before == 0) continue;
-      std::vector<Vec3> saved(region.free_vertices.size());
-      for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
       Barrier_untangler b(topo, region, no_constraints, 0.);
       b.set_deadline(deadline);
-      b.run(mesh.points);
-      if(count() >= before)
-        for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
+      run_on_region(b, region, mesh, true);
     }
   }
 
-  static std::size_t count_inverted(const Hex_mesh_arrays& m)
+  /// Untangling by `b` on `region`, undone unless the region's inverted
+  /// count falls (`must_fall`) or at least does not rise; nothing is done
+  /// on a region with nothing inverted.
+  static void run_on_region(Barrier_untangler& b, const Local_region& region, Hex_mesh_arrays& mesh, bool must_fall)
   {
-    std::size_t n = 0;
-    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= 0.) ++n;
-    return n;
+    auto count = [&] {
+      std::size_t n = 0;
+      for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
+      return n;
+    };
+    const std::size_t before = count();
+    if(before == 0) return;
+    std::vector<Vec3> saved(region.free_vertices.size());
+    for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
+    b.run(mesh.points);
+    const std::size_t after = count();
+    if(must_fall ? after >= before : after > before)
+      for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
   }
+
+  static std::vector<std::size_t> inverted_hexes(const Hex_mesh_arrays& m)
+  {
+    std::vector<std::size_t> bad;
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= 0.) bad.push_back(h);
+    return bad;
+  }
+
+  static std::size_t count_inverted(const Hex_mesh_arrays& m) { return inverted_hexes(m).size(); }
 
   double surface_error(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input) const
   {
