@@ -94,6 +94,21 @@ void test_scaled_jacobian()
   collapsed[1] = collapsed[0];
   HMO_CHECK(CGAL::hex_scaled_jacobian(collapsed) == 0.);
   HMO_CHECK(CGAL::hex_corner_scaled_jacobian(collapsed) == 0.);
+
+  // nearly collapsed, far from the origin: vertex 1 a few ulps from vertex 0
+  // (the edge is noise, whatever value its direction gives) counts as
+  // collapsed; at 1e-5 of the other edges it still has its exact value
+  Hex_points far = cube;
+  for(Point& p : far) p = Point(p.x() + 1e3, p.y() + 1e3, p.z() + 1e3);
+  Hex_points nearly = far;
+  nearly[1] = Point(far[0].x() + 1e-12, far[0].y(), far[0].z());
+  HMO_CHECK(CGAL::hex_scaled_jacobian(nearly) == 0.);
+  Hex_points short_edge = cube;
+  short_edge[1] = Point(1e-5, 0, 0);
+  short_edge[2] = Point(1e-5, 1, 0);
+  short_edge[5] = Point(1e-5, 0, 1);
+  short_edge[6] = Point(1e-5, 1, 1);
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(short_edge), 1., tol);
 }
 
 /// nx x ny x nz unit cubes, vertex (i,j,k) has index i + (nx+1) (j + (ny+1) k)

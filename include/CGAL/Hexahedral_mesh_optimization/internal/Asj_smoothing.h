@@ -45,7 +45,8 @@
 // (closest point, `Target_surface::constraint_at`); a sharp vertex slides on
 // its feature line as the stage received it: the two segments joining its
 // start position to the start positions of its two neighbours along the
-// feature line of the target surface; a corner is fixed. Without a target
+// feature line of the target surface, at most 0.45 of the way along each
+// (so that two neighbours never meet); a corner is fixed. Without a target
 // surface every boundary vertex is fixed. Quality and deviation are tested
 // at the projected position.
 //
@@ -705,10 +706,16 @@ private:
       return m_target->constraint_at(v, m_p[v] + (d - dot(d, normal) * normal)).anchor;
     case ON_LINE:
     {
+      // each sharp vertex keeps to its own part of the segments, at most
+      // `max_slide` of the way to a neighbour's start: two neighbours on a
+      // line stay at least 1 - 2 × max_slide of their start edge apart. With
+      // the whole segment allowed, bunny_dualsheet (with its .obj
+      // reference) had a vertex slide onto its neighbour: a vanished edge
+      const double max_slide = 0.45;
       const Vec3 y = m_p[v] + d;
       const Vec3& o = m_start[v];
-      const Vec3 a = asj_detail::closest_on_segment(y, o, m_start[m_line[v][0]]);
-      const Vec3 b = asj_detail::closest_on_segment(y, o, m_start[m_line[v][1]]);
+      const Vec3 a = asj_detail::closest_on_segment(y, o, o + max_slide * (m_start[m_line[v][0]] - o));
+      const Vec3 b = asj_detail::closest_on_segment(y, o, o + max_slide * (m_start[m_line[v][1]] - o));
       return squared_norm(a - y) <= squared_norm(b - y) ? a : b;
     }
     default:

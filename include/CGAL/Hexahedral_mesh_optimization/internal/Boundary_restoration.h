@@ -28,6 +28,8 @@
 // Vertices are visited furthest from home first; the interior vertices around
 // the ones that could not move are then given a max-min move
 // (Worst_element_smoothing) so that the next sweep may move them further.
+// The sweeps stop when neither kind of move changed anything, after
+// `max_sweeps` or at the time limit.
 // Measured on the shared meshes: see Hex_mesh_quality_improver.h.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
@@ -124,6 +126,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
     rep.moves += moved;
     // give the interior around the stuck vertices room: a max-min move of
     // each interior neighbour (the boundary stays where it is)
+    std::size_t interior_moved = 0;
     if(!stuck.empty())
     {
       std::vector<char> seen(topo.number_of_vertices(), 0);
@@ -136,10 +139,15 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
       const std::vector<Vec3> before = points;
       smoother.raise_vertices(points, ring);
       for(std::size_t u : ring)
-        if(squared_norm(points[u] - before[u]) > 0.) activate_around(u, next);
+        if(squared_norm(points[u] - before[u]) > 0.) { ++interior_moved; activate_around(u, next); }
     }
     active.swap(next);
-    if(moved == 0) break;
+    // the sweeps go on while the interior moves too: what it gains is what
+    // the next sweep needs to move a stuck vertex. Stopping as soon as no
+    // boundary vertex moved cut bunny_dualsheet (with its .obj reference,
+    // every vertex stuck after the pull-back) to one sweep, and its MSJ
+    // stages then stalled at 0.17 instead of 0.33
+    if(moved == 0 && interior_moved == 0) break;
   }
   rep.distance_after = largest_distance();
   return rep;
