@@ -59,7 +59,9 @@ vectors (at the centre: the three unit principal axes).
 
 The value is 1 for a cube and lies in [-1, 1]; it is negative for an inverted
 element. A frame with a zero-length vector counts as 0 (Verdict returns
-+DBL_MAX there, which would rank a collapsed element as perfect).
++DBL_MAX there, which would rank a collapsed element as perfect), and so does
+a frame whose shortest vector is under 10<sup>-6</sup> of its longest (the
+vector is then rounding noise).
 
 \tparam PointRange a random access range of 8 points, MEDIT/VTK order
   (vertices 0-3 form the bottom face, vertex `i+4` lies above vertex `i`)
