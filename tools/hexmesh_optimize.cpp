@@ -23,8 +23,15 @@
 #include <CGAL/improve_hex_mesh_quality.h>
 #include <CGAL/untangle_hex_mesh.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
+#include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <limits>
+#include <memory>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -99,8 +106,10 @@ struct Progress_visitor : CGAL::Hexahedral_mesh_optimization::Default_optimizati
 /// The optimisation pipeline, run when an OUTPUT is given: the whole
 /// pipeline (`CGAL::optimize_hex_mesh`) or, with --untangle, the untangling
 /// only. Changes the vertex positions of `mesh` (never its connectivity).
-bool run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options, const Surface* reference,
-                std::ostream& log, std::string& /*error*/)
+/// `time_limit`: the hard stop left to the optimisation (infinity: none).
+CGAL::Hexahedral_mesh_optimization::Optimization_result
+run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options, const Surface* reference,
+           double time_limit, std::ostream& log)
 {
   namespace HP = CGAL::hex_mesh_parameters;
   Progress_visitor visitor;
@@ -110,7 +119,7 @@ bool run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& op
         << " hexahedra)\n";
   auto np = HP::sharp_angle(options.sharp_angle,
             HP::relax_surface(options.relax_surface,
-            HP::time_limit(options.time_limit,
+            HP::time_limit(time_limit,
             HP::target_msj(options.target_msj,
             HP::surface_tolerance(options.surface_tolerance,
             HP::asj_smoothing(options.asj_smoothing,
@@ -132,8 +141,10 @@ bool run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& op
       log << (r.msj_after >= options.target_msj ? " (target reached)" : " (target not reached)");
     if(r.kept_input) log << "; nothing better found, the input is kept";
     log << "\n";
+    if(r.time_limit_reached)
+      log << "  time limit reached: the stages stopped early and the last checked state is written\n";
   }
-  return true;
+  return r;
 }
 
 } // namespace
@@ -157,6 +168,12 @@ int main(int argc, char** argv)
   }
   std::ostream& out = std::cout;
   int exit_status = 0;
+  const Clock::time_point program_start = Clock::now();
+#ifdef CGAL_LINKED_WITH_TBB
+  std::unique_ptr<tbb::global_control> threads;
+  if(options.threads > 0)
+    threads.reset(new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads)));
+#endif
 
   try
   {
@@ -197,19 +214,22 @@ int main(int argc, char** argv)
     if(has_output)
     {
       input_mesh_for_check = mesh;
-      const Mesh& input_mesh = input_mesh_for_check; // the reference of the surface error
       const Clock::time_point start = Clock::now();
-      if(!run_stages(mesh, options, has_reference ? &reference : nullptr, out, error))
-        return fail(error);
+      // the hard stop counts from the start of the program: what reading took is spent
+      const double time_left = options.time_limit > 0.
+                                 ? (std::max)(1e-9, options.time_limit - seconds_since(program_start))
+                                 : std::numeric_limits<double>::infinity();
+      const CGAL::Hexahedral_mesh_optimization::Optimization_result r =
+        run_stages(mesh, options, has_reference ? &reference : nullptr, time_left, out);
       after.seconds = seconds_since(start);
       const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(mesh);
       after.file = options.output;
       after.quality = CGAL::hex_mesh_quality(mesh);
       // Hausdorff distance between the output boundary and the reference
       // surface (default: the input's boundary), relative to the diagonal of
-      // the reference's bounding box
-      after.surface_error = has_reference ? CGAL::hex_mesh_surface_error(mesh, reference)
-                                          : CGAL::hex_mesh_surface_error(mesh, input_mesh);
+      // the reference's bounding box, as the optimiser measured it
+      after.surface_error = r.surface_error;
+      after.time_limit_reached = r.time_limit_reached;
 
       CGAL::IO::Hex_mesh_fields fields;
       if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))

@@ -33,7 +33,8 @@ struct Hexmesh_optimize_options
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
-  double time_limit = 30.;        ///< --time-limit S, whole run (untangling and quality)
+  double time_limit = 0.;         ///< --time-limit S: hard stop of the whole run; 0: none
+  int threads = 0;                ///< --threads N; 0: every core
   bool asj_smoothing = true;      ///< --no-asj
   bool pull_back = true;          ///< --no-pull-back
   bool relax_surface = true;      ///< --frozen-surface
@@ -104,8 +105,19 @@ inline const std::vector<Option_spec>& option_table()
        return parse_number("--surface-tolerance", v, 0., 1., o.surface_tolerance, e);
      }},
     {"--time-limit", "SECONDS",
-     "time budget of the optimisation, untangling included (default 30)",
+     "hard stop: after SECONDS of wall time from the start (reading included) the optimisation stops at its next "
+     "safe point and the last checked state is written, never worse than the input (default: none; the stages end "
+     "on convergence, so the output does not depend on the machine)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--time-limit", v, 0., 1e7, o.time_limit, e); }},
+    {"--threads", "N",
+     "number of threads (default: every core); the output is the same for any N",
+     [](O& o, const std::string& v, std::string& e) {
+       double n = 0.;
+       if(!parse_number("--threads", v, 1., 1024., n, e)) return false;
+       if(n != std::floor(n)) { e = "option --threads: '" + v + "' is not a whole number"; return false; }
+       o.threads = int(n);
+       return true;
+     }},
     {"--frozen-surface", nullptr,
      "never relax the surface while untangling (alpha, beta stay at their start value)",
      [](O& o, const std::string&, std::string&) { o.relax_surface = false; return true; }},

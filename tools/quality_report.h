@@ -37,6 +37,8 @@ struct Mesh_report
   /// the diagonal of the input's bounding box; negative when not measured
   /// (JSON null)
   double surface_error = -1.;
+  /// output: whether the --time-limit hard stop fired during the optimisation
+  bool time_limit_reached = false;
 };
 
 inline std::string format_fixed(double v, int decimals)
@@ -186,7 +188,10 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
   if(with_output_fields || r.seconds >= 0.)
     s << ",\n" << in << "\"seconds\": " << (r.seconds >= 0. ? json_number(r.seconds) : "null");
   if(with_output_fields)
+  {
     s << ",\n" << in << "\"surface_error\": " << (r.surface_error >= 0. ? json_number(r.surface_error) : "null");
+    s << ",\n" << in << "\"time_limit_reached\": " << (r.time_limit_reached ? "true" : "false");
+  }
   s << "\n" << indent << "}";
   return s.str();
 }

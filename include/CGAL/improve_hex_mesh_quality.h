@@ -25,7 +25,6 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
   s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
   s.edge_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::edge_angle_stages), true);
-  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 30.);
   s.sharp_angle = u.sharp_angle;
   s.xi = u.xi;
   s.local_iterations = u.local_iterations;
@@ -46,6 +45,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   typedef Hex_mesh_adapter<HexMesh> Adapter;
   typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
 
+  const Time_limit time_limit(time_limit_parameter(np));
   const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
@@ -57,7 +57,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   read_untangle_parameters(np, gt, u, ref_points, ref_tris);
   Quality_settings s;
   read_quality_parameters(np, u, s);
-  u.time_limit_seconds = s.time_limit_seconds; // one budget for the whole pipeline
+  u.time_limit = s.time_limit = &time_limit; // one hard stop for the whole pipeline
 
   Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   const Hex_mesh_arrays original = arrays;
@@ -66,10 +66,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   if(untangle)
   {
     Hex_mesh_untangler<Visitor> untangler(u, visitor);
-    result = untangler.run(arrays);
-    // `time_limit` bounds the whole pipeline: the quality part gets what
-    // untangling left, but at least a fifth of it (never-worse holds anyway)
-    s.time_limit_seconds = (std::max)(0.2 * s.time_limit_seconds, s.time_limit_seconds - result.seconds);
+    result = untangler.run(arrays, false); // the improver measures the surface error
   }
   Hex_mesh_quality_improver<Visitor> improver(s, visitor);
   const Optimization_result q = improver.run(arrays, original);
@@ -83,6 +80,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
     result.seconds += q.seconds;
     result.kept_input = result.kept_input && q.kept_input;
     result.success = q.success;
+    result.time_limit_reached = result.time_limit_reached || q.time_limit_reached;
   }
   else
     result = q;
@@ -168,9 +166,9 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{wall-clock budget in seconds; the stages share it (a third is kept for the final checks), so a run ends within about this time plus the reading and writing of the mesh}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine.}
     \cgalParamType{`double`}
-    \cgalParamDefault{30}
+    \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{visitor}
     \cgalParamDescription{an object notified of stages and rounds}
@@ -203,9 +201,9 @@ when it has inverted elements), then improves it (`improve_hex_mesh_quality()`:
 pull-back, MSJ stages, ASJ smoothing), the surface error being measured
 against the input's boundary (or the reference surface) throughout.
 
-It takes the named parameters of both functions; `time_limit` is the budget of
-the whole pipeline (default 30 s): the quality part gets what untangling left
-of it, and at least a fifth of it. The result's stages list both parts in order.
+It takes the named parameters of both functions; `time_limit` is a hard stop
+for the whole pipeline (default: none). The result's stages list both parts
+in order.
 */
 template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result

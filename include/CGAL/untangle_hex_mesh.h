@@ -17,6 +17,7 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
+#include <limits>
 #include <vector>
 
 namespace CGAL {
@@ -49,7 +50,16 @@ template <class GeomTraits>
 void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vector<Vec3>&, std::vector<Tri>&)
 {}
 
-/// the untangler's settings and the reference surface (as a soup) from named parameters
+/// the `time_limit` named parameter: seconds, or infinity (no limit)
+template <class NamedParameters>
+double time_limit_parameter(const NamedParameters& np)
+{
+  return parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
+                                      std::numeric_limits<double>::infinity());
+}
+
+/// the untangler's settings and the reference surface (as a soup) from named
+/// parameters (the time limit, which starts when it is made, is the caller's)
 template <class NamedParameters, class GeomTraits>
 void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, Untangle_settings& s,
                               std::vector<Vec3>& ref_points, std::vector<Tri>& ref_tris)
@@ -64,7 +74,6 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
   s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
   s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
   s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
-  s.time_limit_seconds = choose_parameter(get_parameter(np, hex_mesh_internal_np::time_limit), 60.);
   face_graph_to_soup(
     choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), No_reference_surface()),
     gt, ref_points, ref_tris);
@@ -101,6 +110,10 @@ with the same energy used as a true barrier, so that no element inverts on
 the way. The result never has more inverted elements than the input: when
 nothing better is found the input is returned as it was. The result's
 `stages` say what each stage did.
+
+Every stage ends on convergence or on a work cap counted in rounds, passes
+or iterations, never on the clock: the same input and parameters give the
+same output on any machine, under any load and with any number of threads.
 
 \tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
   (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
@@ -156,9 +169,9 @@ nothing better is found the input is returned as it was. The result's
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{wall-clock budget of the edge-angle stage, and of the edge-angle and barrier stages together, in seconds}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence.}
     \cgalParamType{`double`}
-    \cgalParamDefault{60}
+    \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{visitor}
     \cgalParamDescription{an object notified of stages and rounds}
@@ -185,11 +198,13 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
   typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
 
+  const HMO::internal::Time_limit time_limit(HMO::internal::time_limit_parameter(np));
   const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   HMO::Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
 
   HMO::internal::Untangle_settings s;
+  s.time_limit = &time_limit;
   std::vector<HMO::internal::Vec3> ref_points;
   std::vector<HMO::internal::Tri> ref_tris;
   HMO::internal::read_untangle_parameters(np, gt, s, ref_points, ref_tris);

@@ -285,7 +285,6 @@ void test_parallel()
   s.max_surface_deviation = 1e-3 * bbox_diagonal(in.points);
   s.max_passes = 4;
   s.min_asj_gain = -1.;
-  s.time_limit_seconds = 1e9;
   auto run = [&](const Asj_smoothing_settings& settings, Asj_smoothing_report& r) {
     std::vector<Vec3> p = in.points;
     r = HMO::internal::smooth_for_average_quality(topo, &target, p, settings);

@@ -130,12 +130,14 @@ if(EXISTS ${WORK}/report.json)
     endforeach()
   endif()
   check("the histogram counts every hex (${sum})" sum EQUAL 2832)
-  foreach(key file hexes vertices inverted msj asj histogram seconds surface_error)
+  foreach(key file hexes vertices inverted msj asj histogram seconds surface_error time_limit_reached)
     string(JSON t_${key} ERROR_VARIABLE e TYPE "${json}" output ${key})
     check("output.${key}: ${e}" NOT e)
   endforeach()
   check("output.seconds is a number (${t_seconds})" t_seconds STREQUAL "NUMBER")
   check("output.surface_error is measured (${t_surface_error})" t_surface_error STREQUAL "NUMBER")
+  string(JSON limit_fired ERROR_VARIABLE e GET "${json}" output time_limit_reached)
+  check("no time limit, none reached (${limit_fired})" limit_fired STREQUAL "OFF")
 endif()
 
 # report only, to a .mesh output
@@ -143,6 +145,51 @@ run(medit ${bunny} ${WORK}/out.mesh --quiet --report ${WORK}/report2.json)
 check("writing MEDIT (${medit_err})" medit_rc EQUAL 0)
 check("--quiet prints nothing: ${medit_out}" NOT medit_out MATCHES ".")
 check("MEDIT output written" EXISTS ${WORK}/out.mesh)
+
+# ------------------------------------------------------------ determinism
+# the stages end on convergence and work caps, never on the clock: the same
+# input and options give the same bytes, on any number of threads
+run(again ${bunny} ${WORK}/out_again.mesh --quiet)
+run(one_thread ${bunny} ${WORK}/out_1_thread.mesh --quiet --threads 1)
+run(two_threads ${bunny} ${WORK}/out_2_threads.mesh --quiet --threads 2)
+check("second run (${again_err})" again_rc EQUAL 0)
+check("1-thread run (${one_thread_err})" one_thread_rc EQUAL 0)
+check("2-thread run (${two_threads_err})" two_threads_rc EQUAL 0)
+if(EXISTS ${WORK}/out.mesh AND EXISTS ${WORK}/out_again.mesh AND EXISTS ${WORK}/out_1_thread.mesh
+   AND EXISTS ${WORK}/out_2_threads.mesh)
+  file(SHA256 ${WORK}/out.mesh h_first)
+  file(SHA256 ${WORK}/out_again.mesh h_again)
+  file(SHA256 ${WORK}/out_1_thread.mesh h_one)
+  file(SHA256 ${WORK}/out_2_threads.mesh h_two)
+  check("two runs write the same bytes (${h_first} / ${h_again})" h_first STREQUAL h_again)
+  check("1 and 2 threads write the same bytes (${h_one} / ${h_two})" h_one STREQUAL h_two)
+  check("the default thread count writes the same bytes (${h_first} / ${h_two})" h_first STREQUAL h_two)
+else()
+  check("the determinism runs wrote their outputs" FALSE)
+endif()
+run(bad_threads ${bunny} ${WORK}/out_bad_threads.mesh --threads 1.5)
+check("--threads 1.5 is a usage error (got ${bad_threads_rc})" bad_threads_rc EQUAL 2)
+
+# ------------------------------------------------------------- time limit
+# a hard stop that fires at once: the run stops, says so, and writes a mesh
+# no worse than its input
+run(limited ${bunny} ${WORK}/out_limited.mesh --time-limit 0.000001 --report ${WORK}/limited.json)
+check("a run stopped by its time limit succeeds (${limited_err})" limited_rc EQUAL 0)
+check("it says the limit was reached" limited_out MATCHES "time limit reached")
+check("it writes its output" EXISTS ${WORK}/out_limited.mesh)
+if(EXISTS ${WORK}/limited.json)
+  file(READ ${WORK}/limited.json limited_json)
+  string(JSON fired ERROR_VARIABLE e GET "${limited_json}" output time_limit_reached)
+  check("the JSON report says the limit was reached (${fired} ${e})" fired STREQUAL "ON")
+  string(JSON inverted_after ERROR_VARIABLE e GET "${limited_json}" output inverted)
+  check("never worse than the input: ${inverted_after} inverted of 45" inverted_after LESS_EQUAL 45)
+  string(JSON msj_after ERROR_VARIABLE e GET "${limited_json}" output msj)
+  if(inverted_after EQUAL 45)
+    check("at 45 inverted, the MSJ is not lower (${msj_after})" msj_after GREATER -0.772)
+  endif()
+else()
+  check("the time-limited run wrote its report" FALSE)
+endif()
 
 # ---------------------------------------------------------- shared meshes
 if(EXISTS ${SHARED_DATA}/inverted/hex_torus.vtk)

@@ -32,10 +32,18 @@ struct Stage_report
 \ingroup PkgHexahedralMeshOptimizationRef
 The result of `untangle_hex_mesh()`: never a bare bool.
 
-`success` is true when the mesh has no inverted element at the end. Whatever
-the outcome, the mesh returned has no more inverted elements than the input
-and, at equal counts, an MSJ no lower: when the optimisation could not do
-better, the input positions are kept (`kept_input` is then true).
+`success` is true when the mesh has no inverted element at the end (and,
+for the quality functions, its MSJ reached the target). Whatever the
+outcome, the mesh returned has no more inverted elements than the input and,
+at equal counts, an MSJ no lower: when the optimisation could not do better,
+the input positions are kept (`kept_input` is then true).
+
+The stages end on their own criteria (convergence, work caps counted in
+sweeps or iterations), never on the clock, so that the same input and
+options always give the same result. The `time_limit` named parameter is a
+hard stop only: when it fires, every stage stops at its next safe point, the
+last state that passed its checks is returned (never worse than the input),
+and `time_limit_reached` is true.
 */
 struct Optimization_result
 {
@@ -47,7 +55,11 @@ struct Optimization_result
   /// Hausdorff distance between the output boundary and the reference
   /// surface, relative to the reference's bounding-box diagonal
   double surface_error = 0.;
+  /// wall-clock time of the optimisation, in seconds (a report: no stage reads it)
   double seconds = 0.;
+  /// whether the `time_limit` hard stop fired (the result is then the last
+  /// checked state the run had reached when it stopped)
+  bool time_limit_reached = false;
   std::vector<Stage_report> stages;
 };
 

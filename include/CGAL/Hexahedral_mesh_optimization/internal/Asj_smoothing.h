@@ -76,13 +76,14 @@
 // - Cost: about 0.15 s per pass per 10k hexes (one core); the ASJ keeps
 //   rising slowly for tens of passes (Gauss-Seidel on a smooth objective),
 //   bunny (37.7k hexes): 4 passes 2.3 s ASJ 0.9757, 8 passes 4.7 s 0.9770,
-//   18 passes 10.4 s 0.9785. `time_limit_seconds` and `max_passes` bound it.
+//   18 passes 10.4 s 0.9785. `max_passes` and `min_asj_gain` bound it.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
@@ -117,10 +118,8 @@ struct Asj_smoothing_settings
   int max_passes = 30;
   /// stop when a pass raises the ASJ by less than this
   double min_asj_gain = 1e-4;
-  /// budget in seconds of wall-clock time, read between vertices (the
-  /// pipeline's time limit is wall-clock time; with processor time, the
-  /// error measurement's second thread counted double)
-  double time_limit_seconds = 10.;
+  /// the run's hard stop (null: none), read between vertices
+  const Time_limit* time_limit = nullptr;
   /// try the mean of the best-fitting cuboid corners (candidate 1)
   bool cuboid_targets = true;
   /// soft-min gradient steps per vertex visit (candidate 2); 0 disables
@@ -534,7 +533,7 @@ public:
         for(std::size_t v = 0; v < nv; ++v) if(m_kind[v] == FIXED) active[v] = 0;
       }
       for(std::size_t h = 0; h < nh; ++h) m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa);
-      if(elapsed() > m_s.time_limit_seconds) break;
+      if(time_limit_reached(m_s.time_limit)) break;
       ++rep.passes;
       // one colour at a time, its vertices in parallel (a pass takes up to
       // seconds on large meshes: the clock is read within it too)
@@ -546,7 +545,7 @@ public:
         for_each_vertex(vertices, [&](std::size_t v) {
           if(!active[v] || out_of_time.load(std::memory_order_relaxed)) return;
           if(optimize_vertex(v)) moved[v] = 1;
-          if(elapsed() > m_s.time_limit_seconds) out_of_time = true;
+          if(time_limit_reached(m_s.time_limit)) out_of_time = true;
         });
       }
       std::fill(next.begin(), next.end(), 0);

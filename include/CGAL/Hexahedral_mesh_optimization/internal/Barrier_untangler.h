@@ -30,17 +30,17 @@
 // Speed: the energy loop reads, per region hex, the 8 local indices
 // precomputed once (free vertex index, or a slot of the cached fixed
 // positions) — no hash lookups in the hot loop — and the frames are
-// differences of the 8 corners, written out by hand. A deadline stops the
-// L-BFGS iterations (the result so far is kept: every accepted iterate
-// lowers the energy).
+// differences of the 8 corners, written out by hand. The run's time limit,
+// a hard stop, ends the L-BFGS iterations (the result so far is kept: every
+// accepted iterate lowers the energy).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_region.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 
 #include <Eigen/Dense>
 
-#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -53,16 +53,13 @@ namespace internal {
 class Barrier_untangler
 {
 public:
-  typedef std::chrono::steady_clock Clock;
-
   Barrier_untangler(const Hex_mesh_topology& topo, const Local_region& region,
                     const std::vector<Boundary_constraint>& bc, double boundary_weight)
-    : m_topo(topo), m_region(region), m_bc(&bc), m_wb(boundary_weight),
-      m_deadline(Clock::time_point::max())
+    : m_topo(topo), m_region(region), m_bc(&bc), m_wb(boundary_weight)
   {}
 
-  /// L-BFGS stops at this time (the iterate reached is kept)
-  void set_deadline(Clock::time_point t) { m_deadline = t; }
+  /// L-BFGS stops when this limit is reached (the iterate reached is kept)
+  void set_time_limit(const Time_limit* limit) { m_time_limit = limit; }
   /// the boundary constraints and their weight (between passes of a pull-back)
   void set_boundary(const std::vector<Boundary_constraint>& bc, double weight) { m_bc = &bc; m_wb = weight; }
   /// weight of the sliding of a boundary vertex along its surface or feature
@@ -76,7 +73,7 @@ public:
     Eigen::VectorXd x;
     setup(points, x);
     const double scale = m_scale;
-    for(int pass = 0; pass < passes && Clock::now() < m_deadline; ++pass)
+    for(int pass = 0; pass < passes && !time_limit_reached(m_time_limit); ++pass)
     {
       const double min_det = minimum_determinant(x);
       // Garanzha et al.: ε large enough that the energy is finite and smooth,
@@ -294,7 +291,7 @@ private:
     if(!std::isfinite(e)) return;
     for(int it = 0; it < iterations; ++it)
     {
-      if((it & 7) == 7 && Clock::now() > m_deadline) break;
+      if((it & 7) == 7 && time_limit_reached(m_time_limit)) break;
       // two-loop recursion
       Eigen::VectorXd q = g;
       std::vector<double> alpha(s_hist.size());
@@ -344,7 +341,7 @@ private:
   double m_wt = 0.;
   double m_eps = 1.;
   double m_scale = 1.;
-  Clock::time_point m_deadline;
+  const Time_limit* m_time_limit = nullptr;
   std::vector<std::array<int, 8> > m_idx; // per region hex: free index, or -1-slot in m_fixed
   std::vector<Vec3> m_fixed;
 };

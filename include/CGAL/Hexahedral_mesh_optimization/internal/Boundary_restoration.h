@@ -29,15 +29,15 @@
 // the ones that could not move are then given a max-min move
 // (Worst_element_smoothing) so that the next sweep may move them further.
 // The sweeps stop when neither kind of move changed anything, after
-// `max_sweeps` or at the time limit.
+// `max_sweeps` or at the run's time limit (a hard stop).
 // Measured on the shared meshes: see Hex_mesh_quality_improver.h.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Worst_element_smoothing.h>
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
 namespace CGAL {
@@ -55,7 +55,8 @@ struct Boundary_restoration_settings
   /// no hex may fall below min(floor, its minimum before the move)
   double floor = 0.;
   int max_sweeps = 8;
-  double time_limit_seconds = 5.;
+  /// the run's hard stop (null: none), read between vertices
+  const Time_limit* time_limit = nullptr;
 };
 
 struct Boundary_restoration_report
@@ -71,8 +72,6 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
                                                      const std::vector<Vec3>& home, std::vector<Vec3>& points,
                                                      const Boundary_restoration_settings& s)
 {
-  typedef std::chrono::steady_clock Clock;
-  const auto start = Clock::now();
   const Worst_element_smoothing probe(topo, nullptr, nullptr);
   Boundary_restoration_report rep;
   auto largest_distance = [&] {
@@ -89,7 +88,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
   };
   for(int sweep = 0; sweep < s.max_sweeps; ++sweep)
   {
-    if(std::chrono::duration<double>(Clock::now() - start).count() > s.time_limit_seconds) break;
+    if(time_limit_reached(s.time_limit)) break;
     // furthest from home first (the deviation would cost a guard query each)
     std::vector<std::pair<double, std::size_t> > order;
     for(std::size_t v : boundary_vertices)
@@ -105,6 +104,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
     std::vector<std::size_t> stuck;
     for(const auto& o : order)
     {
+      if(time_limit_reached(s.time_limit)) break;
       const std::size_t v = o.second;
       const Vec3 x = points[v];
       const Surface_deviation dev = guard.local_deviations(points, v, x);

@@ -7,67 +7,53 @@
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_HEX_MESH_QUALITY_IMPROVER_H
 
 // Quality improvement after untangling (Sections 3.3 and 3.4 and the final
-// smoothing), on flat arrays:
-//   1. normalise (mean edge 0.025, as the untangler), target surface Ω_t of
-//      the reference (the original input's boundary, or the user's surface),
-//      ideal angles;
-//   2. stage "pull-back" (Pull_back.h), only when the surface error exceeds
+// smoothing), on flat arrays. The driver `run` calls one method per stage:
+//   1. `set_up`: normalise (mean edge 0.025, as the untangler), target
+//      surface Ω_t of the reference (the original input's boundary, or the
+//      user's surface), ideal angles;
+//   2. `pull_back_stage` (Pull_back.h), only when the surface error exceeds
 //      the tolerance (after an untangling that relaxed the surface), and kept
 //      only if it lowers the surface error;
-//   3. stage "surface restoration" (Boundary_restoration.h): boundary
-//      vertices back toward their home on the reference (input position, or
-//      projection onto the user's surface) wherever the MSJ allows;
-//   4. stages "msj>=t" for t = 0 (only if something is inverted), 0.1, 0.2, …
-//      up to the target, each on what is below t:
-//        - max-min smoothing (Worst_element_smoothing.h), boundary moves
-//          bounded by the surface guard (Surface_guard.h);
-//        - while it falls short of t: the edge-angle local optimiser of
-//          Algorithm 1 (bad = SJ ≤ t, α, β halved but never below 500, a
-//          step rolled back if it drops a region's minimum under the MSJ the
-//          stage started from or moves a boundary vertex beyond the guard's
-//          tolerance), the boundary projected back onto the target surface
-//          (each projection kept only if it lowers no hex below that MSJ and
-//          the guard allows it), max-min smoothing again; passes repeat
-//          while one raises the MSJ by 0.005 or more.
-//      A stage that does not reach its t ends the schedule: the MSJ is then
-//      as high as this method gets it. The guard's bound is 0.9 of the
-//      tolerance; if the error ends above the tolerance, the stages run
-//      again from where they started at 0.75 of it (see `run`);
-//   5. "surface restoration" again, at the MSJ reached;
-//   6. turns of "asj" (one pass near the worst elements) and "max-min"
-//      stages while the MSJ rises, then a final "asj" stage (Asj_smoothing.h:
-//      raises the mean without lowering any element below the MSJ reached);
-//      a turn, or the final smoothing, that leaves the surface error above
-//      max(tolerance, the error before the turns) gets a restoration, and is
-//      undone ("check") if that does not bring it back; so is a turn with a
-//      lowered floor that ends below the MSJ it started from;
+//   3. `surface_guard_set_up`, then `restoration_stage`
+//      (Boundary_restoration.h): boundary vertices back toward their home on
+//      the reference wherever the MSJ allows;
+//   4. `msj_stages_with_retry`: stages "msj>=t" for t = 0 (only if something
+//      is inverted), 0.1, 0.2, … up to the target, each on what is below t —
+//      max-min smoothing (Worst_element_smoothing.h), boundary moves bounded
+//      by the surface guard (Surface_guard.h), then, while it falls short,
+//      edge-angle passes of Algorithm 1 (Local_optimizer.h) with the
+//      boundary projected back; then the restoration at the MSJ reached;
+//   5. `turns`: one focused ASJ pass and a max-min smoothing in turn while
+//      the MSJ rises, each turn checked against the surface bound;
+//   6. `final_asj_smoothing` (Asj_smoothing.h): raises the mean without
+//      lowering any element below the MSJ reached;
 //   7. undo the normalisation; if the MSJ (or the inverted count) is worse
 //      than the input's, the input is returned.
+// Every stage ends on its own convergence test or work cap, all in
+// Optimization_schedule.h; the time limit is a hard stop only (Time_limit.h).
+// A turn or final smoothing stopped by it before its surface check is undone,
+// so the result is always a checked state. Why this order and these values
+// (measured): the manual's implementation notes.
 //
-// Order of a stage (measured on bunny_in, 37734 hexes): with the edge-angle
-// optimiser first, the stages took 19 s to go from 0.2 to 0.5 and ended at
-// 0.547 after 36 s; max-min first reaches 0.4 in 0.5 s, and the edge-angle
-// passes then start from a state where few elements are left below t.
-//
-// Choice: the surface tolerance of the guard. The paper bounds nothing and
-// reports the error it got (0.0005–0.009 of the bounding-box diagonal on its
-// models); here the user gives a tolerance (relative to the reference's
+// The surface tolerance: the paper bounds nothing and reports the error it
+// got; here the user gives a tolerance (relative to the reference's
 // bounding-box diagonal) that no boundary move of the max-min and ASJ
-// smoothing may exceed locally. The edge-angle stages keep the paper's soft
-// constraints (α, β ≥ 500) and the projection at the end of each stage is
+// smoothing may exceed locally. The edge-angle passes keep the paper's soft
+// constraints (α, β ≥ 500) and the projection at the end of each pass is
 // refused where it would lower an element under the stage's floor, so the
 // measured error can end slightly above the tolerance: it is reported, not
-// hidden. (Re-running the stages with a tighter guard when that happens was
-// tried: it doubled the time and did not lower the error on cat_2/block.)
+// hidden.
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Asj_smoothing.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_restoration.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_schedule.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_setup.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pull_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Worst_element_smoothing.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
@@ -86,13 +72,11 @@ struct Quality_settings
 {
   /// the MSJ aimed at; ≥ 1 means as high as the method gets it
   double target_msj = 1.;
-  double stage_step = 0.1;
   double sharp_angle = 165.;
   double alpha = 1000., beta = 1000.;
   double min_alpha_beta = 500.;
   double xi = 0.6;
   int local_iterations = 20;
-  int rounds_per_stage = 3;
   /// run the paper's edge-angle optimiser in each MSJ stage (before the max-min smoothing)
   bool edge_angle = true;
   bool pull_back = true;
@@ -100,7 +84,10 @@ struct Quality_settings
   /// largest surface error allowed to the boundary moves of the quality
   /// stages, relative to the reference's bounding-box diagonal
   double surface_tolerance = 0.005;
-  double time_limit_seconds = 30.;
+  /// the run's hard stop (null: none); it is not the schedule's business
+  const Time_limit* time_limit = nullptr;
+  /// work caps and convergence thresholds of every stage
+  Optimization_schedule schedule;
   /// optional reference surface (model coordinates); default: the boundary of `original`
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
@@ -109,7 +96,34 @@ struct Quality_settings
 template <class Visitor>
 class Hex_mesh_quality_improver
 {
-  typedef std::chrono::steady_clock Clock;
+  typedef std::chrono::steady_clock Clock; // for the reports' seconds only
+
+  /// what the stages share: the normalised mesh, its reference, target
+  /// surface, guard, the boundary vertices' homes, and the surface error of
+  /// the current state when known
+  struct Run_state
+  {
+    Run_state(Hex_mesh_arrays& m, Optimization_result& r) : mesh(m), res(r) {}
+    Hex_mesh_arrays& mesh;
+    Optimization_result& res;
+    std::unique_ptr<Hex_mesh_topology> topo;
+    Normalization nz;
+    /// the reference, model coordinates, cut along (0, 2) as the surface error is measured
+    Triangle_surface reference;
+    /// the surface tolerance in normalised mesh units
+    double tolerance = 0.;
+    double diagonal = 0.;
+    std::unique_ptr<Target_surface> ts;
+    std::unique_ptr<Ideal_angles> ideal;
+    std::unique_ptr<Surface_guard> guard;
+    /// home of each boundary vertex on the reference
+    std::vector<Vec3> home;
+    /// surface error of the current state (it depends on the boundary
+    /// vertices only and is measured only when they moved); negative: unknown
+    double current_error = -1.;
+    /// what the turns and the final smoothing may take the error to
+    double error_bound = 0.;
+  };
 
 public:
   Hex_mesh_quality_improver(const Quality_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
@@ -125,36 +139,60 @@ public:
     const Quality_statistics q0 = quality_statistics(mesh);
     res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
 
-    // ---- reference surface (model coordinates): for the guard cut along
-    // (0, 2) as the surface error is measured; for Ω_t both ways
-    std::vector<Vec3> guard_points, target_points;
-    std::vector<Tri> guard_tris, target_tris;
-    if(m_s.reference_points && m_s.reference_triangles)
+    Run_state st(mesh, res);
+    set_up(st, original);
+    if(m_s.pull_back && q0.inverted == 0 && !stopped()) pull_back_stage(st);
+    if(!stopped()) surface_guard_set_up(st, original);
+    if(!stopped() && restoration_stage(st) > 0) st.current_error = -1.;
+    if(!stopped()) msj_stages_with_retry(st);
+    if(m_s.asj_smoothing && !stopped()) turns(st);
+    if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
+
+    for(Vec3& p : mesh.points) p = st.nz.undo(p);
+
+    // ---- never make the mesh worse
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
+    res.success = q1.inverted == 0 && q1.msj >= (std::min)(m_s.target_msj, 1.) - 1e-12;
+    res.surface_error = (st.current_error >= 0. && !res.kept_input) ? st.current_error
+                                                                    : relative_surface_error(mesh, st.reference);
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
+    res.seconds = seconds_since(start);
+    return res;
+  }
+
+private:
+  bool stopped() const { return time_limit_reached(m_s.time_limit); }
+
+  /// the reference surface, the normalisation, Ω_t and the ideal angles
+  void set_up(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    // reference surface (model coordinates): for the guard cut along (0, 2)
+    // as the surface error is measured; for Ω_t both ways
+    if(user_reference())
     {
-      guard_points = target_points = *m_s.reference_points;
-      guard_tris = target_tris = *m_s.reference_triangles;
+      m_guard_points = m_target_points = *m_s.reference_points;
+      m_guard_tris = m_target_tris = *m_s.reference_triangles;
     }
     else
     {
       const Hex_mesh_boundary ob = extract_boundary(original);
-      triangulate_boundary(ob, original.points, Quad_split::diagonal_02, guard_points, guard_tris);
-      triangulate_boundary(ob, original.points, Quad_split::both_diagonals, target_points, target_tris);
+      triangulate_boundary(ob, original.points, Quad_split::diagonal_02, m_guard_points, m_guard_tris);
+      triangulate_boundary(ob, original.points, Quad_split::both_diagonals, m_target_points, m_target_tris);
     }
-    Triangle_surface reference;
     {
       std::vector<Triangle_surface::Vertex_index> vi;
-      for(const Vec3& p : guard_points) vi.push_back(reference.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
-      for(const Tri& t : guard_tris) reference.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+      for(const Vec3& p : m_guard_points) vi.push_back(st.reference.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+      for(const Tri& t : m_guard_tris) st.reference.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
     }
-    const double diagonal = internal::diagonal(bbox_of(reference));
+    st.diagonal = internal::diagonal(bbox_of(st.reference));
 
-    // ---- normalise
-    const Hex_mesh_topology topo(mesh);
-    const Normalization nz = normalization(topo, mesh.points);
-    for(Vec3& p : mesh.points) p = nz.apply(p);
-    for(Vec3& p : guard_points) p = nz.apply(p);
-    for(Vec3& p : target_points) p = nz.apply(p);
-    const double tolerance = m_s.surface_tolerance * diagonal * nz.scale;
+    // normalise
+    st.topo.reset(new Hex_mesh_topology(st.mesh));
+    st.nz = normalization(*st.topo, st.mesh.points);
+    for(Vec3& p : st.mesh.points) p = st.nz.apply(p);
+    for(Vec3& p : m_guard_points) p = st.nz.apply(p);
+    for(Vec3& p : m_target_points) p = st.nz.apply(p);
+    st.tolerance = m_s.surface_tolerance * st.diagonal * st.nz.scale;
 
     Target_surface_parameters tsp;
     tsp.feature_angle = m_s.sharp_angle;
@@ -162,293 +200,241 @@ public:
     // untangler smoothed what needed it, and smoothing a valid boundary only
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
-    const Target_surface ts(mesh, target_points, target_tris, tsp);
-    const Ideal_angles ideal = ideal_angles_on_target(topo, ts, mesh.points);
+    st.ts.reset(new Target_surface(st.mesh, m_target_points, m_target_tris, tsp));
+    st.ideal.reset(new Ideal_angles(ideal_angles_on_target(*st.topo, *st.ts, st.mesh.points)));
+  }
 
-    // the surface error of the current state when known, i.e. measured since
-    // the boundary last moved (it depends on the boundary vertices only;
-    // measuring it takes up to 1.6 s on an 11k-hex mesh: it is not measured
-    // twice); negative: unknown
-    double current_error = -1.;
+  bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }
 
-    // ---- stage: pull-back, when the boundary is off the target surface
-    if(m_s.pull_back && q0.inverted == 0)
+  /// the home of each boundary vertex on the reference (its input position
+  /// when the reference is the input's boundary, its projection otherwise)
+  /// and the surface guard every later stage shares
+  void surface_guard_set_up(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    st.home.assign(st.mesh.points.size(), Vec3{0., 0., 0.});
+    for(std::size_t v : st.ts->boundary().vertices)
     {
-      current_error = scaled_error(mesh, reference, nz);
-      if(current_error > m_s.surface_tolerance)
-        current_error = pull_back_stage(topo, ts, reference, nz, current_error, mesh, res);
-    }
-
-    // home of each boundary vertex on the reference: its input position when
-    // the reference is the input's boundary, its projection otherwise
-    const bool user_reference = m_s.reference_points && m_s.reference_triangles;
-    std::vector<Vec3> home(mesh.points.size());
-    for(std::size_t v : ts.boundary().vertices)
-    {
-      if(user_reference) ts.closest_on_reference(mesh.points[v], home[v]);
-      else home[v] = nz.apply(original.points[v]);
+      if(user_reference()) st.ts->closest_on_reference(st.mesh.points[v], st.home[v]);
+      else st.home[v] = st.nz.apply(original.points[v]);
     }
     // what the boundary must keep covering: the input's boundary itself, or
     // (with a user's reference, which the guard checks directly) the
     // boundary as it is now
-    const std::vector<Vec3> guard_start = user_reference ? mesh.points : home;
-    // one guard for every stage (its reference tree is built once)
-    Surface_guard guard(ts.boundary(), guard_points, guard_tris, guard_start);
-    if(restoration_stage(topo, guard, ts, home, mesh, res) > 0) current_error = -1.;
+    const std::vector<Vec3> guard_start = user_reference() ? st.mesh.points : st.home;
+    st.guard.reset(new Surface_guard(st.ts->boundary(), m_guard_points, m_guard_tris, guard_start));
+  }
 
-    // ---- MSJ stages, boundary moves bounded by the surface guard, then the
-    // restoration at the MSJ reached. Nothing checks the stages' moves but
-    // the guard, whose samples miss part of the error on creases and thin
-    // curved parts, so its bound keeps a margin, `msj_guard_margin` of the
-    // tolerance; the quads whose samples come within 0.7 of the tolerance
-    // are sampled finely too. If the error measured after them is still
-    // above the tolerance, they run again from where they started with a
-    // wider margin (`msj_guard_retry_margin`) and the run with the lower
-    // error is kept. Measured, surface error after the stages (bound):
-    //   margin 1:   cap_in 0.0056 (0.0053), impeller_stresstest 0.00058
-    //               (0.0005), bust_in 0.0091 (0.0088); with the retry at
-    //               0.75, at the end of the pipeline: 0.0052, 0.00049, 0.0072
-    //   margin 0.9: impeller 0.00052, after the retry 0.00048;
-    //               fertility_gregson11 0.0045 (no retry), MSJ at the end
-    //               0.712–0.722
-    //   margin 0.8: fertility_gregson11 MSJ 0.688 at the end (its stages end
-    //               at 0.60 instead of 0.67, and the turns do not make up for
-    //               it)
-    // the error before the stages: whether they may cause an excess at all
-    // (after an untangling that left the boundary off the surface they
-    // cannot: bunny_dualsheet, 0.017 for a tolerance of 0.005; there the
-    // fine sampling only costs time, MSJ 0.319 → 0.237, and a second run
-    // too). Nor does the margin serve then: no second run can follow, and
-    // it only holds back the vertices already near the bound (bunny_dualsheet
-    // with its .obj reference, 0.0116 after the pull-back: the stages stalled
-    // at MSJ 0.109 with the margin, 0.334 without; with its own boundary
-    // 0.320 → 0.334 at the end of the pipeline)
-    // (measured again only if the restoration moved the boundary: after the
-    // interior stage every boundary vertex is home and it moves none)
-    if(current_error < 0.) current_error = scaled_error(mesh, reference, nz);
-    const bool within_before_stages = current_error <= m_s.surface_tolerance;
-    if(within_before_stages) guard.set_dense_sampling_above(0.7 * tolerance);
-    // how long a measurement of the error takes (for the time budget below)
-    double check_seconds = 0.;
-    auto run_msj_stages = [&](double margin, double limit) {
-      msj_stages(topo, ts, ideal, guard, margin * tolerance, start, limit, mesh, res);
-      restoration_stage(topo, guard, ts, home, mesh, res);
-      const auto t = Clock::now();
-      current_error = scaled_error(mesh, reference, nz);
-      check_seconds = seconds_since(t);
+  /// measures the surface error of the current state
+  double measure_error(Run_state& st) const
+  {
+    st.current_error = scaled_error(st.mesh, st.reference, st.nz);
+    return st.current_error;
+  }
+
+  /// The MSJ stages, their guard keeping a margin (`msj_guard_margin` of the
+  /// tolerance, fine sampling from `msj_dense_sampling`), then the
+  /// restoration at the MSJ reached. If the error measured after them is
+  /// above the tolerance, they run again from where they started with a
+  /// wider margin (`msj_guard_retry_margin`), and the run with the lower
+  /// error is kept. The margin, the fine sampling and the second run apply
+  /// only when the error before the stages is within the tolerance (after an
+  /// untangling that left the boundary off the surface they cannot cause an
+  /// excess, and only hold the stages back). See the manual.
+  void msj_stages_with_retry(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    if(st.current_error < 0.) measure_error(st);
+    const bool within_before = st.current_error <= m_s.surface_tolerance;
+    if(within_before) st.guard->set_dense_sampling_above(sc.msj_dense_sampling * st.tolerance);
+    auto run_msj_stages = [&](double margin) {
+      msj_stages(st, margin * st.tolerance);
+      restoration_stage(st);
+      measure_error(st);
     };
+    const std::vector<Vec3> before = st.mesh.points;
+    run_msj_stages(within_before ? sc.msj_guard_margin : 1.);
+    if(within_before && st.current_error > m_s.surface_tolerance && !stopped())
     {
-      const std::vector<Vec3> before = mesh.points;
-      const auto t = Clock::now();
-      run_msj_stages(within_before_stages ? msj_guard_margin : 1., 0.55 * m_s.time_limit_seconds);
-      const double first_seconds = seconds_since(t);
-      if(within_before_stages && current_error > m_s.surface_tolerance && elapsed(start) < 0.6 * m_s.time_limit_seconds)
+      const std::vector<Vec3> first = st.mesh.points;
+      const double first_error = st.current_error;
+      report_check(st, "the MSJ stages", "surface error " + std::to_string(st.current_error) +
+                    " above the tolerance; run again with the guard at " + std::to_string(sc.msj_guard_retry_margin) +
+                    " of it (the first run is kept if the second is not better)");
+      st.mesh.points = before;
+      run_msj_stages(sc.msj_guard_retry_margin);
+      if(st.current_error > first_error || stopped())
       {
-        const std::vector<Vec3> first = mesh.points;
-        const double first_error = current_error;
-        report_check(res, mesh, "the MSJ stages", "surface error " + std::to_string(current_error) +
-                      " above the tolerance; run again with the guard at " + std::to_string(msj_guard_retry_margin) +
-                      " of it (the first run is kept if the second is not better)");
-        mesh.points = before;
-        run_msj_stages(msj_guard_retry_margin,
-                       (std::min)(0.7 * m_s.time_limit_seconds, elapsed(start) + first_seconds));
-        if(current_error > first_error)
-        {
-          mesh.points = first;
-          current_error = first_error;
-          report_check(res, mesh, "the second run of the MSJ stages", "surface error not lower");
-        }
+        st.mesh.points = first;
+        st.current_error = first_error;
+        report_check(st, "the second run of the MSJ stages", stopped() ? "time limit reached" : "surface error not lower");
       }
     }
+  }
 
-    // ---- ASJ smoothing and max-min smoothing in turn while the MSJ rises:
-    // the ASJ pass reshapes the neighbourhood of the worst elements, which
-    // frees elements the max-min smoothing had stalled on. The guard is
-    // sampled, so each turn can let the error creep a little past the
-    // tolerance (cap_in: 0.0062 → 0.0098 over four turns): when the measured
-    // error ends above max(tolerance, the error before the turns), the
-    // surface restoration runs, and if the error is still above, the turn is
-    // undone (the final smoothing: see there).
-    // From here on the error bound is strict (a turn over it is undone):
-    // the guard samples the quads that come near the tolerance on a fine
-    // grid too. fertility_gregson11: with the coarse samples alone a
-    // max-min turn took the error from 0.005000 to 0.005060 (bound
-    // 0.005036) where the guard saw 0.004999, and two turns were undone
-    // after a 3 s restoration each. (The MSJ stages sample finely from 0.7
-    // of the tolerance only: from 0.5, at margin 0.8, fertility_gregson11
-    // ended at MSJ 0.686–0.699 instead of 0.701.)
-    guard.set_dense_sampling_above(0.5 * tolerance);
-    const double error_bound = (std::max)(m_s.surface_tolerance, current_error);
-    // What the surface error may still grow by (mesh units, × the guard's
-    // factor): an ASJ move whose quads stay that close to the boundary as
-    // its stage received it skips the guard's AABB queries
-    // (`Asj_smoothing_settings::start_deviation_budget`); 0 while the error
-    // of the current state is unknown. bunny_in, final smoothing from the
-    // state the turns reach (MSJ 0.681, ASJ 0.925, error 0.0036), 8 s:
-    // guard alone 4 passes, ASJ 0.937; with the shortcut 15 passes, 0.951,
-    // error 0.0036.
-    auto error_budget = [&](double factor) {
-      return current_error >= 0. ? factor * (std::max)(0., error_bound - current_error) * diagonal * nz.scale : 0.;
-    };
-    auto within_bound = [&](const std::vector<Vec3>& saved, const char* what, bool restore) {
-      const auto t = Clock::now();
-      current_error = scaled_error(mesh, reference, nz);
-      check_seconds = (std::max)(check_seconds, seconds_since(t));
-      if(current_error <= error_bound) return true;
-      // first try to bring the boundary back home, at the MSJ reached
-      double e = current_error;
-      if(restore)
-      {
-        restoration_stage(topo, guard, ts, home, mesh, res);
-        e = current_error = scaled_error(mesh, reference, nz);
-        if(e <= error_bound) return true;
-      }
-      mesh.points = saved;
-      current_error = -1.;
-      std::ostringstream d;
-      d << "surface error " << e << " above " << error_bound;
-      report_check(res, mesh, what, d.str());
-      return false;
-    };
-    // Time: what a last check can take (two error measurements around a
-    // restoration, plus a margin) is kept back from the budget; the final
-    // ASJ smoothing gets `final_asj_share` of it and the turns the rest.
-    // A turn is short: one ASJ pass over the vertices of the hexes below
-    // MSJ + 0.2 and their neighbours, then the max-min smoothing alone (no
-    // edge-angle pass). Many short turns beat a few long ones; measured on
-    // bunny_in / fertility_gregson11 (MSJ at the end of a 30 s run):
-    //   3 full passes + staged max-min with edge-angle passes 0.495 / 0.696
-    //   3 full passes + max-min toward the target           0.589 / 0.727
-    //   1 full pass                                         0.638 / 0.729
-    //   1 pass, focus MSJ + 0.1 / + 0.2 / + 0.3              0.589 / 0.720,
-    //                                        0.681 / 0.748, 0.632 / 0.731
-    // When a turn gains less than 0.001, the next ones let the ASJ pass take
-    // elements down to MSJ − `turn_floor_drop` (see there).
-    const double budget = m_s.time_limit_seconds;
-    const double checks_end = budget - (2. * check_seconds + 0.1 * budget + 1.5);
-    const double turns_end = checks_end - final_asj_share * budget;
-    double drop = 0.;
-    // the guard at 0.7 × the tolerance, as for the final smoothing, halved
-    // after a turn undone for its surface error (cap_in: the first turn
-    // ended at 0.00692 for a bound of 0.00684, and the turns stopped at MSJ
-    // 0.399; with the retry they went on to 0.5)
-    double turn_guard = 0.7;
-    while(m_s.asj_smoothing && elapsed(start) < turns_end)
+  /// What the surface error may still grow by (mesh units, × `factor`): an
+  /// ASJ move whose quads stay that close to the boundary as its stage
+  /// received it skips the guard's AABB queries
+  /// (`Asj_smoothing_settings::start_deviation_budget`); 0 while the error
+  /// of the current state is unknown.
+  double error_budget(const Run_state& st, double factor) const
+  {
+    return st.current_error >= 0.
+             ? factor * (std::max)(0., st.error_bound - st.current_error) * st.diagonal * st.nz.scale
+             : 0.;
+  }
+
+  /// Checks the surface error after a turn or the final smoothing: within
+  /// `error_bound` it is kept; otherwise (`restore`) the surface restoration
+  /// runs first, and if the error is still above, or the time limit was
+  /// reached before the check, the state `saved` (of error `saved_error`) is
+  /// put back and a "check" stage says why.
+  bool within_bound(Run_state& st, const std::vector<Vec3>& saved, double saved_error, const char* what, bool restore)
+  {
+    double e = -1.;
+    if(!stopped())
     {
-      const std::vector<Vec3> saved = mesh.points;
-      const double before = quality_statistics(mesh).msj;
+      e = measure_error(st);
+      if(e <= st.error_bound) return true;
+      if(restore && !stopped())
+      {
+        restoration_stage(st);
+        e = measure_error(st);
+        if(e <= st.error_bound && !stopped()) return true;
+      }
+    }
+    st.mesh.points = saved;
+    st.current_error = saved_error;
+    std::ostringstream d;
+    if(e < 0. || stopped()) d << "time limit reached before its surface check";
+    else d << "surface error " << e << " above " << st.error_bound;
+    report_check(st, what, d.str());
+    return false;
+  }
+
+  /// ASJ smoothing and max-min smoothing in turn while the MSJ rises: the
+  /// ASJ pass reshapes the neighbourhood of the worst elements, which frees
+  /// elements the max-min smoothing had stalled on. A turn that leaves the
+  /// surface error above max(tolerance, the error before the turns) gets a
+  /// restoration, and is undone if that does not bring it back (the guard
+  /// is then halved); so is a turn with a lowered floor that ends below the
+  /// MSJ it started from. The turns end when two in a row gain less than
+  /// `turn_min_gain`, the second with the lowered floor, or at `max_turns`.
+  void turns(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    // from here on the error bound is strict (a turn over it is undone): the
+    // guard samples the quads that come near the tolerance on a fine grid too
+    st.guard->set_dense_sampling_above(sc.turn_dense_sampling * st.tolerance);
+    if(st.current_error < 0.) measure_error(st);
+    st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
+    double drop = 0.;
+    m_turn_guard = sc.turn_guard;
+    for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
+    {
+      const std::vector<Vec3> saved = st.mesh.points;
+      const double saved_error = st.current_error;
+      const double before = quality_statistics(st.mesh).msj;
       Asj_smoothing_settings one_focused_pass;
       one_focused_pass.max_passes = 1;
-      one_focused_pass.focus_below = before + 0.2;
+      one_focused_pass.focus_below = before + sc.turn_focus_band;
       one_focused_pass.parallel = false; // index order (see Asj_smoothing_settings::parallel)
-      one_focused_pass.start_deviation_budget = error_budget(turn_guard);
-      asj_stage(topo, ts, guard, turn_guard * tolerance, (std::min)(0.1 * budget, turns_end - elapsed(start)),
-                mesh, res, one_focused_pass, drop);
-      max_min_stage(topo, ts, guard, turn_guard * tolerance, turns_end - elapsed(start), mesh, res);
-      const double after = quality_statistics(mesh).msj;
+      one_focused_pass.start_deviation_budget = error_budget(st, m_turn_guard);
+      asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drop);
+      max_min_stage(st, m_turn_guard * st.tolerance);
+      const double after = quality_statistics(st.mesh).msj;
       if(drop > 0. && after < before)
       {
-        mesh.points = saved;
-        report_check(res, mesh, "the last ASJ + max-min turn with a lowered floor", "MSJ " + std::to_string(after) + " below " +
-                      std::to_string(before));
+        st.mesh.points = saved;
+        st.current_error = saved_error;
+        report_check(st, "the last ASJ + max-min turn with a lowered floor",
+                     "MSJ " + std::to_string(after) + " below " + std::to_string(before));
         break;
       }
-      if(!within_bound(saved, "the last ASJ + max-min turn", true))
+      if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
       {
-        turn_guard *= 0.5;
-        if(turn_guard < 0.15) break;
+        m_turn_guard *= 0.5;
+        if(m_turn_guard < sc.min_turn_guard) break;
         continue;
       }
-      if(after < before + 0.001)
+      if(after < before + sc.turn_min_gain)
       {
         if(drop > 0.) break;
-        drop = turn_floor_drop;
+        drop = sc.turn_floor_drop;
       }
     }
+  }
 
-    // ---- stage: ASJ smoothing, never below the MSJ reached, until the
-    // reserve for the last check, its guard at 0.7 × the tolerance so that
-    // its creep stays within the bound (hanger stress test: at 1 × it was
-    // undone twice, ASJ 0.985 lost), or tighter after the turns; if it is
-    // undone (block_in: 0.0027043 for a bound of 0.0027, ASJ 0.892 lost), it
-    // runs again with the boundary fixed
-    if(m_s.asj_smoothing)
-    {
-      // two runs: the first with 0.6 of the time; the second goes on from
-      // it, or, if the first was undone, starts again with the boundary
-      // fixed, which cannot change the surface error. (The restoration moves
-      // the boundary back and loses much of the ASJ gained, block_in: 0.891
-      // → 0.848; half the guard still ended 4e-7 above the bound there.)
-      std::vector<Vec3> saved = mesh.points;
-      const double error_before = current_error; // negative: unknown
-      Asj_smoothing_settings first;
-      first.start_deviation_budget = error_budget(turn_guard);
-      asj_stage(topo, ts, guard, turn_guard * tolerance, 0.6 * (checks_end - elapsed(start)), mesh, res, first);
-      const bool kept = within_bound(saved, "the final ASJ smoothing", false);
-      if(kept) saved = mesh.points;
-      // the check after the second run takes about as long as the one just
-      // made, which can be far longer than those before: the final smoothing
-      // moves the whole boundary a little, and the bounded-error Hausdorff
-      // distance then culls little (impeller_stresstest: 3.7 s against 0.3 s
-      // after the turns; the second run and its check ended the run at
-      // 29.2 s)
-      const double second_end = (std::min)(checks_end, budget - (check_seconds + 0.05 * budget + 1.));
-      if(elapsed(start) < second_end - 0.5)
-      {
-        Asj_smoothing_settings second;
-        second.move_boundary = kept;
-        second.start_deviation_budget = error_budget(turn_guard);
-        asj_stage(topo, ts, guard, turn_guard * tolerance, second_end - elapsed(start), mesh, res, second);
-        // with the boundary fixed, the surface error is the one before;
-        // otherwise the second run is undone if it ends above the bound (a
-        // restoration instead lost hanger_stresstest's ASJ, 0.99 → 0.959)
-        if(kept) within_bound(saved, "the second run of the final ASJ smoothing", false);
-        else current_error = error_before;
-      }
-    }
-
-    for(Vec3& p : mesh.points) p = nz.undo(p);
-
-    // ---- never make the mesh worse
-    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
-    res.success = q1.inverted == 0 && q1.msj >= (std::min)(m_s.target_msj, 1.) - 1e-12;
-    res.surface_error = (current_error >= 0. && !res.kept_input) ? current_error : relative_surface_error(mesh, reference);
-    res.seconds = seconds_since(start);
-    return res;
+  /// The final ASJ smoothing, never below the MSJ reached, its guard as the
+  /// turns'. If its surface check undoes it, it runs again with the boundary
+  /// fixed, which cannot change the surface error (the restoration would
+  /// move the boundary back and lose much of the ASJ gained).
+  void final_asj_smoothing(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    if(st.current_error < 0.) measure_error(st);
+    st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
+    const std::vector<Vec3> saved = st.mesh.points;
+    const double saved_error = st.current_error;
+    Asj_smoothing_settings first;
+    first.max_passes = sc.asj_passes;
+    first.min_asj_gain = sc.asj_min_gain;
+    first.start_deviation_budget = error_budget(st, m_turn_guard);
+    asj_stage(st, m_turn_guard * st.tolerance, first);
+    if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
+    Asj_smoothing_settings fixed_boundary = first;
+    fixed_boundary.move_boundary = false;
+    fixed_boundary.start_deviation_budget = 0.;
+    asj_stage(st, m_turn_guard * st.tolerance, fixed_boundary);
+    st.current_error = saved_error; // the boundary did not move
   }
 
 private:
   /// a "check" stage: `what` was undone, and why
-  void report_check(Optimization_result& res, const Hex_mesh_arrays& mesh, const std::string& what, const std::string& why)
+  void report_check(Run_state& st, const std::string& what, const std::string& why)
   {
     Stage_report sr;
     sr.name = "check";
-    sr.msj_after = quality_statistics(mesh).msj;
+    const Quality_statistics q = quality_statistics(st.mesh);
+    sr.inverted_before = sr.inverted_after = q.inverted;
+    sr.msj_after = q.msj;
     sr.details = what + " undone: " + why;
-    res.stages.push_back(sr);
+    st.res.stages.push_back(sr);
     m_visitor.stage_started(sr.name, 0);
     m_visitor.stage_finished(sr);
   }
-  void asj_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const Surface_guard& guard,
-                 double guard_tolerance, double seconds, Hex_mesh_arrays& mesh,
-                 Optimization_result& res, Asj_smoothing_settings as = Asj_smoothing_settings(),
-                 double floor_drop = 0.)
+
+  /// an ASJ smoothing; `as` brings the caller's choices (passes, focus,
+  /// fixed boundary), the floor (the MSJ − `floor_drop`) and guard are set here
+  void asj_stage(Run_state& st, double guard_tolerance, Asj_smoothing_settings as, double floor_drop = 0.)
   {
-    // `as` brings the caller's choices (passes, focus, fixed boundary);
-    // floor, guard and time are set here
     const auto t = Clock::now();
-    const Quality_statistics q = quality_statistics(mesh);
+    const Quality_statistics q = quality_statistics(st.mesh);
     m_visitor.stage_started("asj", 0);
     as.min_sj_floor = q.msj - floor_drop;
     as.max_surface_deviation = guard_tolerance;
+    const Surface_guard& guard = *st.guard;
     as.local_deviation = [&guard](const std::vector<Vec3>& p, std::size_t v, const Vec3& x) {
       return guard.local_deviations(p, v, x);
     };
-    as.time_limit_seconds = (std::max)(1., seconds);
-    const Asj_smoothing_report ar = smooth_for_average_quality(topo, &ts, mesh.points, as);
+    as.time_limit = m_s.time_limit;
+    const Asj_smoothing_report ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
     std::ostringstream d;
     d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << ", MSJ kept at " << ar.msj_after;
-    report_stage("asj", q, mesh, t, ar.passes, d.str(), res);
+    report_stage(st, "asj", q, t, ar.passes, d.str());
+  }
+
+  /// the max-min smoothing settings of the schedule, toward `target`
+  Worst_element_smoothing_settings max_min_settings(double target, double guard_tolerance) const
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    Worst_element_smoothing_settings ws;
+    ws.target_sj = target;
+    ws.max_surface_deviation = guard_tolerance;
+    ws.max_sweeps = sc.max_min_sweeps;
+    ws.patience = sc.max_min_patience;
+    ws.min_gain = sc.max_min_min_gain;
+    ws.time_limit = m_s.time_limit;
+    return ws;
   }
 
   /// The max-min smoothing of the turns: toward the target itself rather
@@ -456,61 +442,58 @@ private:
   /// MSJ are worked on however close the next stage's value is (bunny_in: a
   /// turn's "msj>=0.5" stalled at 0.4996 on the few elements below 0.5 and
   /// ended the turns; aimed at 1 the same turn reached 0.541).
-  void max_min_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const Surface_guard& guard,
-                     double guard_tolerance, double seconds, Hex_mesh_arrays& mesh, Optimization_result& res)
+  void max_min_stage(Run_state& st, double guard_tolerance)
   {
     const auto t = Clock::now();
-    const Quality_statistics q = quality_statistics(mesh);
-    m_visitor.stage_started("max-min", count_below(mesh, q.msj + 0.05));
-    Worst_element_smoothing polish(topo, &ts, &guard);
-    Worst_element_smoothing_settings ws;
-    ws.target_sj = (std::min)(m_s.target_msj, 1.);
-    ws.max_surface_deviation = guard_tolerance;
-    ws.time_limit_seconds = (std::max)(0.5, seconds);
-    const Worst_element_smoothing_report wr = polish.run(mesh.points, ws);
+    const Quality_statistics q = quality_statistics(st.mesh);
+    m_visitor.stage_started("max-min", count_below(st.mesh, q.msj + 0.05));
+    Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
+    const Worst_element_smoothing_report wr =
+      polish.run(st.mesh.points, max_min_settings((std::min)(m_s.target_msj, 1.), guard_tolerance));
     std::ostringstream d;
     d << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << wr.msj_before << " -> " << wr.msj_after;
-    report_stage("max-min", q, mesh, t, wr.sweeps, d.str(), res);
+    report_stage(st, "max-min", q, t, wr.sweeps, d.str());
   }
 
   /// completes the report of a stage that inverts nothing and hands it to the visitor
-  void report_stage(const std::string& name, const Quality_statistics& before, const Hex_mesh_arrays& mesh,
-                    Clock::time_point t, int rounds, const std::string& details, Optimization_result& res)
+  void report_stage(Run_state& st, const std::string& name, const Quality_statistics& before, Clock::time_point t,
+                    int rounds, const std::string& details)
   {
     Stage_report sr;
     sr.name = name;
-    sr.inverted_before = sr.inverted_after = before.inverted;
-    sr.msj_after = quality_statistics(mesh).msj;
+    const Quality_statistics after = quality_statistics(st.mesh);
+    sr.inverted_before = before.inverted;
+    sr.inverted_after = after.inverted;
+    sr.msj_after = after.msj;
     sr.seconds = seconds_since(t);
     sr.rounds = rounds;
     sr.details = details;
-    res.stages.push_back(sr);
+    st.res.stages.push_back(sr);
     m_visitor.stage_finished(sr);
   }
 
   /// the surface restoration; returns the number of boundary moves it made
-  std::size_t restoration_stage(const Hex_mesh_topology& topo, const Surface_guard& guard, const Target_surface& ts,
-                         const std::vector<Vec3>& home,
-                         Hex_mesh_arrays& mesh, Optimization_result& res)
+  std::size_t restoration_stage(Run_state& st)
   {
     const auto t = Clock::now();
     m_visitor.stage_started("surface restoration", 0);
     Boundary_restoration_settings bs;
-    const Quality_statistics q = quality_statistics(mesh);
+    const Quality_statistics q = quality_statistics(st.mesh);
     bs.floor = q.msj;
     bs.home_distance = 1e-9; // mesh units, normalised: a mean edge is 0.025
-    bs.time_limit_seconds = 0.1 * m_s.time_limit_seconds;
-    const Boundary_restoration_report br = restore_boundary(topo, guard, ts.boundary().vertices, home, mesh.points, bs);
+    bs.max_sweeps = m_s.schedule.restoration_sweeps;
+    bs.time_limit = m_s.time_limit;
+    const Boundary_restoration_report br =
+      restore_boundary(*st.topo, *st.guard, st.ts->boundary().vertices, st.home, st.mesh.points, bs);
     std::ostringstream d;
     d << br.moves << " boundary moves toward the reference in " << br.sweeps
       << " sweeps, largest distance of a boundary vertex to its home " << br.distance_before / 0.025 << " -> "
       << br.distance_after / 0.025 << " mean edge lengths";
-    report_stage("surface restoration", q, mesh, t, br.sweeps, d.str(), res);
+    report_stage(st, "surface restoration", q, t, br.sweeps, d.str());
     return br.moves;
   }
 
   static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-  static double elapsed(Clock::time_point t) { return seconds_since(t); }
 
   /// surface error of the normalised mesh against the model-space reference
   static double scaled_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference, const Normalization& nz)
@@ -520,37 +503,38 @@ private:
     return relative_surface_error(m, reference);
   }
 
-  /// The pull-back, kept only if it lowers the surface error `error_before`:
-  /// Ω_t's anchors are projections of the boundary as the untangler left it,
-  /// and on a mesh whose boundary slid along a curved surface, or whose
-  /// feature classification is noisy, reaching them can raise the Hausdorff
+  /// The pull-back, when the boundary is off the target surface by more
+  /// than the tolerance, kept only if it lowers the surface error: Ω_t's
+  /// anchors are projections of the boundary as the untangler left it, and
+  /// on a mesh whose boundary slid along a curved surface, or whose feature
+  /// classification is noisy, reaching them can raise the Hausdorff
   /// distance to the reference (impeller_stresstest: 0.0027 → 0.018).
-  /// Returns the surface error of the mesh it leaves.
-  double pull_back_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const Triangle_surface& reference,
-                       const Normalization& nz, double error_before, Hex_mesh_arrays& mesh, Optimization_result& res)
+  void pull_back_stage(Run_state& st)
   {
+    const double error_before = measure_error(st);
+    if(error_before <= m_s.surface_tolerance) return;
     const auto t = Clock::now();
     std::vector<Boundary_constraint> bc;
-    ts.update_constraints(mesh.points, bc);
+    st.ts->update_constraints(st.mesh.points, bc);
     double far = 0.;
-    for(std::size_t v : ts.boundary().vertices) far = (std::max)(far, norm(mesh.points[v] - bc[v].anchor));
-    if(!(far > 0.01 * 0.025)) return error_before;
+    for(std::size_t v : st.ts->boundary().vertices) far = (std::max)(far, norm(st.mesh.points[v] - bc[v].anchor));
+    if(!(far > 0.01 * 0.025)) return;
     m_visitor.stage_started("pull-back", 0);
     Pull_back_settings ps;
-    // a bounded share of the budget: the MSJ stages matter more than the
-    // last hundredth of an edge length (cap_in: 300 iterations took 40 s to
-    // go from 0.09 to 0.003 edge lengths)
-    ps.max_iterations = 40;
-    ps.time_limit_seconds = 0.1 * m_s.time_limit_seconds;
-    const std::vector<Vec3> before = mesh.points;
-    const Pull_back_report pr = pull_back_to_target(topo, ts, mesh.points, ps);
-    const double error_after = scaled_error(mesh, reference, nz);
+    ps.max_iterations = m_s.schedule.pull_back_iterations;
+    ps.time_limit = m_s.time_limit;
+    const std::vector<Vec3> before = st.mesh.points;
+    const Pull_back_report pr = pull_back_to_target(*st.topo, *st.ts, st.mesh.points, ps);
+    const double error_after = measure_error(st);
     const bool kept = error_after < error_before;
-    if(!kept) mesh.points = before;
+    if(!kept)
+    {
+      st.mesh.points = before;
+      st.current_error = error_before;
+    }
     Stage_report sr;
     sr.name = "pull-back";
-    sr.inverted_after = 0;
-    sr.msj_after = quality_statistics(mesh).msj;
+    sr.msj_after = quality_statistics(st.mesh).msj;
     sr.seconds = seconds_since(t);
     sr.rounds = pr.iterations;
     std::ostringstream d;
@@ -560,94 +544,95 @@ private:
       << error_before << " -> " << error_after
       << (kept ? "" : ": not lower, the mesh before the pull-back is kept");
     sr.details = d.str();
-    res.stages.push_back(sr);
+    st.res.stages.push_back(sr);
     m_visitor.stage_finished(sr);
-    return kept ? error_after : error_before;
   }
 
-  void msj_stages(const Hex_mesh_topology& topo, const Target_surface& ts, const Ideal_angles& ideal,
-                  const Surface_guard& guard, double guard_tolerance, Clock::time_point start, double limit,
-                  Hex_mesh_arrays& mesh, Optimization_result& res)
+  /// Stages "msj>=t" for t = 0 (only if something is inverted), then
+  /// `msj_stage_step`, 2 × that, … up to the target, each on what is below
+  /// t: max-min smoothing first (one vertex at a time, cheap: bunny_in MSJ
+  /// 0 → 0.4 in 0.5 s, where the edge-angle optimiser took 15 s), then, while
+  /// it falls short of t, edge-angle passes (Algorithm 1 with α, β ≥ 500,
+  /// rollback under the stage's starting MSJ or beyond the guard), the
+  /// boundary projected back, and max-min again, while a pass raises the MSJ
+  /// by at least `msj_stage_min_gain`. A stage that does not reach its t
+  /// ends the schedule: the MSJ is then as high as this method gets it.
+  void msj_stages(Run_state& st, double guard_tolerance)
   {
-    // `limit`: seconds after `start` by which the stages end
+    const Optimization_schedule& sc = m_s.schedule;
     const double target = (std::min)(m_s.target_msj, 1.);
-    double msj = quality_statistics(mesh).msj;
-    for(int k = 0; ; ++k)
+    double msj = quality_statistics(st.mesh).msj;
+    for(int k = 0; !stopped(); ++k)
     {
-      double t = k * m_s.stage_step;
+      double t = k * sc.msj_stage_step;
       if(t > target) t = target;
       if(msj > t && t < target) continue;
-      const double budget = limit - elapsed(start);
-      if(budget <= 0.) break;
       const auto t0 = Clock::now();
       std::ostringstream name;
       name << "msj>=" << t;
-      const std::size_t bad = count_below(mesh, t);
-      m_visitor.stage_started(name.str(), bad);
+      m_visitor.stage_started(name.str(), count_below(st.mesh, t));
       Stage_report sr;
       sr.name = name.str();
-      sr.inverted_before = count_below(mesh, 0.);
+      sr.inverted_before = quality_statistics(st.mesh).inverted;
       std::ostringstream d;
-      // max-min smoothing first: one vertex at a time, cheap (bunny_in: MSJ
-      // 0 → 0.4 in 0.5 s, where the edge-angle optimiser took 15 s); the
-      // edge-angle optimiser only where it stalls, then max-min again
-      Worst_element_smoothing polish(topo, &ts, &guard);
-      Worst_element_smoothing_settings ws;
-      ws.target_sj = t;
-      ws.max_surface_deviation = guard_tolerance;
+      Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
+      const Worst_element_smoothing_settings ws = max_min_settings(t, guard_tolerance);
       auto smooth = [&] {
-        ws.time_limit_seconds = (std::max)(0.5, 0.5 * (limit - elapsed(start)));
-        const Worst_element_smoothing_report wr = polish.run(mesh.points, ws);
-        const double now = quality_statistics(mesh).msj;
+        const Worst_element_smoothing_report wr = polish.run(st.mesh.points, ws);
+        const double now = quality_statistics(st.mesh).msj;
         d << "max-min smoothing: " << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << msj << " -> " << now;
         msj = now;
       };
       smooth();
-      // edge-angle passes while they pay (a pass that raises the MSJ by
-      // less than 0.005 ends the stage) and the budget lasts
       // (even for a handful of elements: on fertility_gregson11 a pass on
       // the last element below 0.7 did not fix it, but the max-min smoothing
       // after it went from 0.691 to 0.697)
-      for(double gain = 1.; msj < t && gain >= 0.005 && m_s.edge_angle &&
-                            limit - elapsed(start) > 0.2 * limit;)
+      for(int pass = 0; m_s.edge_angle && msj < t && pass < sc.msj_stage_edge_angle_passes && !stopped(); ++pass)
       {
         const double msj_pass = msj;
-        Local_optimizer opt(topo, ideal,
-                            [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
-                              ts.update_constraints(p, bc);
-                            },
-                            ts.mean_boundary_edge_length());
-        opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished(sr.name, r, left); };
-        opt.accept_step = [&](const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& p) {
-          return surface_kept(ts.boundary(), guard, guard_tolerance, region, before, p);
-        };
-        Local_optimizer_settings ls;
-        ls.target_sj = t;
-        ls.alpha = m_s.alpha; ls.beta = m_s.beta;
-        ls.min_alpha_beta = m_s.min_alpha_beta;
-        ls.xi_start = m_s.xi;
-        ls.local_iterations = m_s.local_iterations;
-        ls.max_rounds = m_s.rounds_per_stage;
-        ls.time_limit_seconds = 0.3 * (limit - elapsed(start));
-        ls.min_sj_floor = msj;
-        const Local_optimizer_report r = opt.run(mesh.points, ls);
-        sr.rounds = r.rounds;
-        const std::size_t projected = project_boundary(topo, ts, guard, guard_tolerance, mesh.points, msj);
+        const Local_optimizer_report r = edge_angle_pass(st, t, msj, guard_tolerance, sr.name);
+        sr.rounds += r.rounds;
+        const std::size_t projected = project_boundary(st, guard_tolerance, msj);
         d << "; edge-angle: below " << t << " " << r.bad_before << " -> " << r.bad_after << " in " << r.rounds
           << " rounds, " << projected << " boundary vertices projected back; ";
         smooth();
-        gain = msj - msj_pass;
+        if(msj - msj_pass < sc.msj_stage_min_gain) break;
       }
-      const double now = msj;
-      msj = now;
-      sr.inverted_after = count_below(mesh, 0.);
+      sr.inverted_after = quality_statistics(st.mesh).inverted;
       sr.msj_after = msj;
       sr.seconds = seconds_since(t0);
       sr.details = d.str();
-      res.stages.push_back(sr);
+      st.res.stages.push_back(sr);
       m_visitor.stage_finished(sr);
       if(msj < t || t >= target) break;
     }
+  }
+
+  /// one pass of the edge-angle local optimiser toward `t`, no element below `floor`
+  Local_optimizer_report edge_angle_pass(Run_state& st, double t, double floor, double guard_tolerance,
+                                         const std::string& stage)
+  {
+    const Target_surface& ts = *st.ts;
+    const Surface_guard& guard = *st.guard;
+    Local_optimizer opt(*st.topo, *st.ideal,
+                        [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
+                          ts.update_constraints(p, bc);
+                        },
+                        ts.mean_boundary_edge_length());
+    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished(stage, r, left); };
+    opt.accept_step = [&](const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& p) {
+      return surface_kept(ts.boundary(), guard, guard_tolerance, region, before, p);
+    };
+    Local_optimizer_settings ls;
+    ls.target_sj = t;
+    ls.alpha = m_s.alpha; ls.beta = m_s.beta;
+    ls.min_alpha_beta = m_s.min_alpha_beta;
+    ls.xi_start = m_s.xi;
+    ls.local_iterations = m_s.local_iterations;
+    ls.max_rounds = m_s.schedule.msj_stage_rounds;
+    ls.time_limit = m_s.time_limit;
+    ls.min_sj_floor = floor;
+    return opt.run(st.mesh.points, ls);
   }
 
   /// whether a step of the edge-angle optimiser on `region` (free vertices
@@ -683,11 +668,13 @@ private:
 
   /// projects boundary vertices onto their anchors, each only if no hex
   /// around it falls below `floor` and the guard allows it; returns how many
-  std::size_t project_boundary(const Hex_mesh_topology& topo, const Target_surface& ts, const Surface_guard& guard,
-                               double tolerance, std::vector<Vec3>& points, double floor) const
+  std::size_t project_boundary(Run_state& st, double tolerance, double floor) const
   {
+    const Target_surface& ts = *st.ts;
+    const Surface_guard& guard = *st.guard;
+    std::vector<Vec3>& points = st.mesh.points;
     std::size_t n = 0;
-    const Worst_element_smoothing probe(topo, &ts, nullptr);
+    const Worst_element_smoothing probe(*st.topo, &ts, nullptr);
     for(std::size_t v : ts.boundary().vertices)
     {
       const Vec3 a = ts.constraint_at(v, points[v]).anchor;
@@ -709,28 +696,14 @@ private:
     return n;
   }
 
-  /// How far below the MSJ the ASJ smoothing of a turn may take elements
-  /// once a turn at the MSJ has stalled; such a turn is kept only if its
-  /// max-min smoothing ends above the MSJ it started from. Where the worst
-  /// elements are interior and locked in a max-min equilibrium, letting the
-  /// smoothing reshape them frees it (bunny_in: 0.551 → 0.610 at 0.03); where
-  /// the boundary holds them (fertility_gregson11) the turn is undone.
-  static constexpr double turn_floor_drop = 0.03;
-
-  /// The share of the time budget kept for the final ASJ smoothing (the
-  /// turns raise the MSJ and lower the ASJ a little). Measured with the
-  /// parallel smoothing, 30 s, MSJ / ASJ: bunny_in 0.739 / 0.948 at 0.1,
-  /// 0.716 / 0.955 at 0.2, 0.684 / 0.948 at 0.3; fertility_gregson11
-  /// 0.740 / 0.947 at 0.1, 0.734 / 0.949 at 0.2.
-  static constexpr double final_asj_share = 0.2;
-  /// the MSJ stages' guard bound, relative to the surface tolerance, and
-  /// the one of their second run when the first ends above the tolerance
-  /// (see `run`)
-  static constexpr double msj_guard_margin = 0.9;
-  static constexpr double msj_guard_retry_margin = 0.75;
-
   Quality_settings m_s;
   Visitor& m_visitor;
+  /// the reference surface in normalised mesh units: for the guard, cut
+  /// along (0, 2) as the surface error is measured; for Ω_t both ways
+  std::vector<Vec3> m_guard_points, m_target_points;
+  std::vector<Tri> m_guard_tris, m_target_tris;
+  /// the guard of the turns and of the final smoothing, relative to the tolerance
+  double m_turn_guard = 0.7;
 };
 
 } // namespace internal

@@ -39,8 +39,10 @@
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Barrier_untangler.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_schedule.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Optimization_setup.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 
@@ -62,8 +64,10 @@ struct Untangle_settings
   int local_iterations = 20;
   int max_rounds = 60;
   bool barrier_fallback = true;
-  double time_limit_seconds = 60.;
-  bool verbose = false;
+  /// the run's hard stop (null: none); it is not the schedule's business
+  const Time_limit* time_limit = nullptr;
+  /// work caps and convergence thresholds of every stage
+  Optimization_schedule schedule;
   /// optional reference surface (triangle soup, model coordinates)
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
@@ -97,7 +101,7 @@ struct Untangle_settings
 /// Returns the largest residual left.
 inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_surface& ts,
                                    std::vector<Vec3>& points, double tol, int outer,
-                                   std::chrono::steady_clock::time_point deadline, std::size_t* regions_done = nullptr)
+                                   const Time_limit* time_limit, std::size_t* regions_done = nullptr)
 {
   const auto& hexes = topo.hexes();
   std::vector<Boundary_constraint> bc;
@@ -137,10 +141,11 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
     }
     std::vector<std::size_t> seeds;
     for(std::size_t h = 0; h < hexes.size(); ++h) if(seed[h]) seeds.push_back(h);
-    if(seeds.empty() || std::chrono::steady_clock::now() > deadline) break;
+    if(seeds.empty() || time_limit_reached(time_limit)) break;
     const double w = w0 * std::pow(10., 2 + k);
     for(const Local_region& region : extract_local_regions(topo, seeds, 2))
     {
+      if(time_limit_reached(time_limit)) break;
       auto region_residual = [&] {
         double m = 0.;
         for(std::size_t v : region.free_vertices) if(bc[v].type != Vertex_class::interior) m = (std::max)(m, residual(v));
@@ -150,12 +155,12 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
       std::vector<Vec3> saved(region.free_vertices.size());
       for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = points[region.free_vertices[i]];
       Barrier_untangler b(topo, region, bc, w);
-      b.set_deadline(deadline);
+      b.set_time_limit(time_limit);
       std::size_t inverted_before = 0;
-      for(std::size_t h : region.hexes) if(hex_sj(h) <= 0.) ++inverted_before;
+      for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_before;
       if(!b.run_injective(points, 100)) continue;
       std::size_t inverted_after = 0;
-      for(std::size_t h : region.hexes) if(hex_sj(h) <= 0.) ++inverted_after;
+      for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_after;
       if(region_residual() > before || inverted_after > inverted_before)
         for(std::size_t i = 0; i < saved.size(); ++i) points[region.free_vertices[i]] = saved[i];
       else if(regions_done) ++*regions_done;
@@ -170,14 +175,16 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
 template <class Visitor>
 class Hex_mesh_untangler
 {
+  typedef std::chrono::steady_clock Clock; // for the reports' seconds only
+
 public:
   Hex_mesh_untangler(const Untangle_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
 
-  Optimization_result run(Hex_mesh_arrays& mesh)
+  /// Untangles `mesh` in place. `measure_surface_error`: whether the result
+  /// gets the surface error (the quality pipeline measures it itself).
+  Optimization_result run(Hex_mesh_arrays& mesh, bool measure_surface_error = true)
   {
-    typedef std::chrono::steady_clock Clock;
     const auto start = Clock::now();
-    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     Optimization_result res;
     const Hex_mesh_arrays input = mesh;
     const Quality_statistics q0 = quality_statistics(mesh);
@@ -200,165 +207,162 @@ public:
     else
       ts.reset(new Target_surface(mesh, tsp));
 
-    const Ideal_angles ideal = ideal_angles_on_target(topo, *ts, mesh.points);
-
-    // ---- stage "interior": the barrier with the boundary fixed
-    if(m_s.barrier_fallback && q0.inverted > 0)
-    {
-      const auto t = Clock::now();
-      Stage_report sr;
-      sr.name = "interior";
-      sr.inverted_before = q0.inverted;
-      m_visitor.stage_started(sr.name, sr.inverted_before);
-      untangle_interior(topo, ts->boundary(), mesh, start);
-      sr.inverted_after = count_inverted(mesh);
-      sr.msj_after = quality_statistics(mesh).msj;
-      sr.seconds = since(t);
-      sr.rounds = 1;
-      sr.details = "foldover-free energy, interior vertices only";
-      res.stages.push_back(sr);
-      m_visitor.stage_finished(sr);
-    }
-
-    // ---- stage "edge-angle": the local optimiser of Algorithm 1
-    {
-      const auto t = Clock::now();
-      Local_optimizer opt(topo, ideal,
-                          [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
-                            ts->update_constraints(p, bc);
-                          },
-                          ts->mean_boundary_edge_length());
-      opt.on_round = [&](int r, std::size_t left) {
-        m_visitor.round_finished("edge-angle", r, left);
-      };
-      Local_optimizer_settings ls;
-      ls.alpha = m_s.alpha; ls.beta = m_s.beta; ls.xi_start = m_s.xi;
-      ls.min_alpha_beta = m_s.relax_surface ? 1. : (std::min)(m_s.alpha, m_s.beta);
-      ls.local_iterations = m_s.local_iterations;
-      ls.max_rounds = m_s.max_rounds;
-      ls.time_limit_seconds = m_s.time_limit_seconds;
-      // Hand-over to the barrier stage (measured, CPU time): a region of
-      // more than 3000 hexes is left to it — impeller_stresstest's single
-      // 11k-hex region cost 65 % of a 48 s run in sparse Cholesky and was
-      // not untangled; the barrier untangles all 8857 in 6 s, MSJ 0.34;
-      // kitty (perturbed) 23 s → 4 s. And 8 rounds in a row without
-      // progress end the stage: bunny_dualsheet sat at 2 inverted from round
-      // 19 to 60 (9.6 s) while the barrier frees them in 0.01 s; the longest
-      // useful plateau seen is 6 rounds (bust_in).
-      ls.max_region_hexes = 3000;
-      ls.max_stalled_rounds = 8;
-      m_visitor.stage_started("edge-angle", q0.inverted);
-      const Local_optimizer_report r = opt.run(mesh.points, ls);
-      Stage_report sr;
-      sr.name = "edge-angle";
-      sr.inverted_before = r.inverted_before; sr.inverted_after = r.inverted_after;
-      sr.msj_after = quality_statistics(mesh).msj;
-      sr.seconds = since(t); sr.rounds = r.rounds;
-      std::ostringstream d;
-      d << r.accepted_steps << " steps accepted, " << r.rolled_back_steps << " rolled back; alpha = "
-        << r.final_alpha << ", beta = " << r.final_beta << " at the end";
-      sr.details = d.str();
-      res.stages.push_back(sr);
-      m_visitor.stage_finished(sr);
-    }
-
-    // ---- stage "barrier": on what is left, the surface free to relax
-    if(m_s.barrier_fallback && count_inverted(mesh) > 0)
-    {
-      const auto t = Clock::now();
-      Stage_report sr;
-      sr.name = "barrier";
-      sr.inverted_before = count_inverted(mesh);
-      m_visitor.stage_started("barrier", sr.inverted_before);
-      // boundary weight w0: moving a vertex one mean edge off its anchor
-      // costs as much as one well-shaped Jacobian sample (f = 3 for a cube).
-      // Strong first (100 w0: a tenth of an edge costs one sample), weaker
-      // only for what is still inverted, each time on wider regions; the
-      // surface may relax down to w0 (1000 w0 throughout without
-      // `relax_surface`). With w0 alone the barrier untangled
-      // impeller_stresstest but left its surface 0.057 of the diagonal away.
-      // Sliding along the surface (free in Eq. 6) costs a tenth of that
-      // weight: on a curved surface a slide of half an edge moves the quads
-      // off it (impeller_stresstest: boundary moved by 0.0077 of the
-      // diagonal (median), error 0.0063; with the sliding term 0.0027;
-      // fractions 0.3–3 gave 0.0031–0.0034, hanger 0.0070–0.0076).
-      const double w0 = 1. / (0.025 * 0.025);
-      const std::vector<double> weights = m_s.relax_surface ? std::vector<double>{100. * w0, 10. * w0, w0, w0}
-                                                            : std::vector<double>{1000. * w0, 1000. * w0};
-      const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(m_s.time_limit_seconds));
-      for(std::size_t pass = 0; pass < weights.size() && Clock::now() < deadline; ++pass)
-      {
-        const std::vector<std::size_t> bad = inverted_hexes(mesh);
-        if(bad.empty()) break;
-        ++sr.rounds;
-        std::vector<Boundary_constraint> bc;
-        ts->update_constraints(mesh.points, bc);
-        for(const Local_region& region : extract_local_regions(topo, bad, 2 + int(pass)))
-        {
-          Barrier_untangler b(topo, region, bc, weights[pass]);
-          b.set_sliding_weight(0.1 * weights[pass]);
-          b.set_deadline(deadline);
-          run_on_region(b, region, mesh, false);
-        }
-        m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
-      }
-      sr.inverted_after = count_inverted(mesh);
-      sr.msj_after = quality_statistics(mesh).msj;
-      sr.seconds = since(t);
-      sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
-      res.stages.push_back(sr);
-      m_visitor.stage_finished(sr);
-    }
-
-    // ---- stage "surface": boundary back toward the target surface
-    {
-      const auto t = Clock::now();
-      Stage_report sr;
-      sr.name = "surface";
-      sr.inverted_before = count_inverted(mesh);
-      m_visitor.stage_started("surface", sr.inverted_before);
-      std::size_t regions = 0;
-      const double worst = pull_back_to_surface(topo, *ts, mesh.points, 0.1 * 0.025, 4,
-                                                Clock::now() + std::chrono::seconds(10), &regions);
-      sr.inverted_after = count_inverted(mesh);
-      sr.msj_after = quality_statistics(mesh).msj;
-      sr.seconds = since(t);
-      sr.details = std::to_string(regions) + " regions, largest residual " + std::to_string(worst / 0.025) + " edges";
-      res.stages.push_back(sr);
-      m_visitor.stage_finished(sr);
-    }
+    if(m_s.barrier_fallback && q0.inverted > 0 && !stopped())
+      interior_stage(topo, ts->boundary(), mesh, res);
+    if(!stopped())
+      edge_angle_stage(topo, *ts, mesh, res);
+    if(m_s.barrier_fallback && count_inverted(mesh) > 0 && !stopped())
+      barrier_stage(topo, *ts, mesh, res);
+    if(!stopped())
+      surface_stage(topo, *ts, mesh, res);
 
     for(Vec3& p : mesh.points) p = nz.undo(p);
 
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
     res.success = q1.inverted == 0;
-    res.surface_error = surface_error(mesh, input);
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
+    if(measure_surface_error) res.surface_error = surface_error(mesh, input);
     res.seconds = since(start);
     return res;
   }
 
 private:
+  bool stopped() const { return time_limit_reached(m_s.time_limit); }
+  static double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+  /// starts the report of a stage and tells the visitor
+  Stage_report begin_stage(const std::string& name, std::size_t inverted)
+  {
+    Stage_report sr;
+    sr.name = name;
+    sr.inverted_before = inverted;
+    m_visitor.stage_started(name, inverted);
+    return sr;
+  }
+
+  /// completes the report of a stage and hands it to the visitor
+  void end_stage(Stage_report& sr, const Hex_mesh_arrays& mesh, Clock::time_point t, Optimization_result& res)
+  {
+    const Quality_statistics q = quality_statistics(mesh);
+    sr.inverted_after = q.inverted;
+    sr.msj_after = q.msj;
+    sr.seconds = since(t);
+    res.stages.push_back(sr);
+    m_visitor.stage_finished(sr);
+  }
+
+  /// stage "interior": the barrier with the boundary fixed (see `untangle_interior`)
+  void interior_stage(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
+                      Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    Stage_report sr = begin_stage("interior", count_inverted(mesh));
+    untangle_interior(topo, boundary, mesh);
+    sr.rounds = 1;
+    sr.details = "foldover-free energy, interior vertices only";
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "edge-angle": the local optimiser of Algorithm 1
+  void edge_angle_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                        Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    const Ideal_angles ideal = ideal_angles_on_target(topo, ts, mesh.points);
+    Local_optimizer opt(topo, ideal,
+                        [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
+                          ts.update_constraints(p, bc);
+                        },
+                        ts.mean_boundary_edge_length());
+    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished("edge-angle", r, left); };
+    Local_optimizer_settings ls;
+    ls.alpha = m_s.alpha; ls.beta = m_s.beta; ls.xi_start = m_s.xi;
+    ls.min_alpha_beta = m_s.relax_surface ? 1. : (std::min)(m_s.alpha, m_s.beta);
+    ls.local_iterations = m_s.local_iterations;
+    ls.max_rounds = (std::min)(m_s.max_rounds, sc.edge_angle_rounds);
+    ls.time_limit = m_s.time_limit;
+    // Hand-over to the barrier stage (measured): a region of more than
+    // `edge_angle_max_region_hexes` is left to it, and so is a plateau of
+    // `edge_angle_stalled_rounds` (see the manual)
+    ls.max_region_hexes = sc.edge_angle_max_region_hexes;
+    ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
+    Stage_report sr = begin_stage("edge-angle", count_inverted(mesh));
+    const Local_optimizer_report r = opt.run(mesh.points, ls);
+    sr.rounds = r.rounds;
+    std::ostringstream d;
+    d << r.accepted_steps << " steps accepted, " << r.rolled_back_steps << " rolled back; alpha = "
+      << r.final_alpha << ", beta = " << r.final_beta << " at the end";
+    sr.details = d.str();
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "barrier": on what is left, the foldover-free energy with the
+  /// surface free to relax, strong first, weaker only for what is still
+  /// inverted, each time on wider regions (weights: `Optimization_schedule`)
+  void barrier_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                     Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    Stage_report sr = begin_stage("barrier", count_inverted(mesh));
+    const double w0 = 1. / (0.025 * 0.025);
+    std::vector<double> weights;
+    if(m_s.relax_surface) weights.assign(std::begin(sc.barrier_weights_relaxed), std::end(sc.barrier_weights_relaxed));
+    else weights.assign(std::begin(sc.barrier_weights_fixed), std::end(sc.barrier_weights_fixed));
+    for(std::size_t pass = 0; pass < weights.size() && !stopped(); ++pass)
+    {
+      const std::vector<std::size_t> bad = inverted_hexes(mesh);
+      if(bad.empty()) break;
+      ++sr.rounds;
+      std::vector<Boundary_constraint> bc;
+      ts.update_constraints(mesh.points, bc);
+      for(const Local_region& region : extract_local_regions(topo, bad, 2 + int(pass)))
+      {
+        if(stopped()) break;
+        Barrier_untangler b(topo, region, bc, weights[pass] * w0);
+        b.set_sliding_weight(sc.barrier_sliding_fraction * weights[pass] * w0);
+        b.set_time_limit(m_s.time_limit);
+        run_on_region(b, region, mesh, false);
+      }
+      m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
+    }
+    sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "surface": the boundary back toward the target surface
+  void surface_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                     Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    Stage_report sr = begin_stage("surface", count_inverted(mesh));
+    std::size_t regions = 0;
+    const double worst = pull_back_to_surface(topo, ts, mesh.points, sc.surface_residual_edges * 0.025,
+                                              sc.surface_passes, m_s.time_limit, &regions);
+    sr.details = std::to_string(regions) + " regions, largest residual " + std::to_string(worst / 0.025) + " edges";
+    end_stage(sr, mesh, t, res);
+  }
+
   /// The foldover-free energy on regions of 3 rings around the inverted
   /// hexes with every boundary vertex fixed: whatever the interior alone can
   /// untangle is untangled without moving the surface. A region's result is
   /// kept only if it lowers its inverted count: where the interior cannot
   /// help, the next stages start from the input as it was.
-  void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
-                         std::chrono::steady_clock::time_point start) const
+  void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh) const
   {
     const std::vector<Boundary_constraint> no_constraints(mesh.points.size());
-    const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                    std::chrono::duration<double>(0.5 * m_s.time_limit_seconds));
-    for(Local_region region : extract_local_regions(topo, inverted_hexes(mesh), 3))
+    for(Local_region region : extract_local_regions(topo, inverted_hexes(mesh), m_s.schedule.interior_rings))
     {
+      if(stopped()) break;
       std::vector<std::size_t> interior;
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       if(interior.empty()) continue;
       region.free_vertices.swap(interior);
       Barrier_untangler b(topo, region, no_constraints, 0.);
-      b.set_deadline(deadline);
+      b.set_time_limit(m_s.time_limit);
       run_on_region(b, region, mesh, true);
     }
   }
@@ -370,7 +374,7 @@ private:
   {
     auto count = [&] {
       std::size_t n = 0;
-      for(std::size_t h : region.hexes) if(scaled_jacobian(mesh, h) <= 0.) ++n;
+      for(std::size_t h : region.hexes) if(is_inverted(scaled_jacobian(mesh, h))) ++n;
       return n;
     };
     const std::size_t before = count();
@@ -386,7 +390,7 @@ private:
   static std::vector<std::size_t> inverted_hexes(const Hex_mesh_arrays& m)
   {
     std::vector<std::size_t> bad;
-    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= 0.) bad.push_back(h);
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(is_inverted(scaled_jacobian(m, h))) bad.push_back(h);
     return bad;
   }
 

@@ -38,9 +38,10 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Edge_angle_energy.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_edge_lengths.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
-#include <chrono>
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <string>
@@ -63,7 +64,8 @@ struct Local_optimizer_settings
   int max_rounds = 60;
   int rings = 2;
   int max_rings = 6;
-  double time_limit_seconds = 60.;
+  /// the run's hard stop (null: none), read between regions
+  const Time_limit* time_limit = nullptr;
   /// MSJ stages: a step that takes a region's minimum SJ below this floor
   /// (and below the region's current minimum) is rolled back, so the mesh's
   /// MSJ never drops under it (set it to the MSJ at the start of the stage)
@@ -106,14 +108,12 @@ public:
 
   Local_optimizer_report run(std::vector<Vec3>& points, const Local_optimizer_settings& s) const
   {
-    typedef std::chrono::steady_clock Clock;
-    const auto start = Clock::now();
     Local_optimizer_report rep;
     const std::size_t nh = m_topo.number_of_hexes();
     std::vector<double> sj(nh);
     for(std::size_t h = 0; h < nh; ++h) sj[h] = hex_sj(points, h);
     rep.bad_before = count_bad(sj, s.target_sj);
-    rep.inverted_before = count_bad(sj, 0.);
+    rep.inverted_before = count_inverted(sj);
 
     double alpha = s.alpha, beta = s.beta, xi = s.xi_start;
     int rings = s.rings;
@@ -123,7 +123,7 @@ public:
     std::size_t bad = rep.bad_before;
     for(int round = 0; round < s.max_rounds && bad > 0; ++round)
     {
-      if(std::chrono::duration<double>(Clock::now() - start).count() > s.time_limit_seconds) break;
+      if(time_limit_reached(s.time_limit)) break;
       ++rep.rounds;
       std::vector<std::size_t> seeds;
       for(std::size_t h = 0; h < nh; ++h) if(is_bad(sj[h], s.target_sj)) seeds.push_back(h);
@@ -133,7 +133,7 @@ public:
       w.alpha = alpha; w.beta = beta;
       std::size_t optimized = 0;
       for(const Local_region& region : regions)
-        if(region.hexes.size() <= s.max_region_hexes)
+        if(region.hexes.size() <= s.max_region_hexes && !time_limit_reached(s.time_limit))
         {
           optimize_region(region, points, sj, bc, w, xi, s, rep);
           ++optimized;
@@ -155,7 +155,7 @@ public:
       }
     }
     rep.bad_after = bad;
-    rep.inverted_after = count_bad(sj, 0.);
+    rep.inverted_after = count_inverted(sj);
     rep.final_alpha = alpha; rep.final_beta = beta;
     return rep;
   }
@@ -166,6 +166,10 @@ public:
     std::size_t n = 0;
     for(double s : sj) if(is_bad(s, target)) ++n;
     return n;
+  }
+  static std::size_t count_inverted(const std::vector<double>& sj)
+  {
+    return std::size_t(std::count_if(sj.begin(), sj.end(), [](double s) { return is_inverted(s); }));
   }
 
 private:

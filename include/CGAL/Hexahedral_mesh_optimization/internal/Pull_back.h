@@ -81,6 +81,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <Eigen/Dense>
@@ -165,8 +166,8 @@ struct Pull_back_settings
   /// relative residual of the conjugate gradient
   double cg_tolerance = 1e-8;
   int max_iterations = 50;
-  /// the run ends after the iteration that exceeds it (the best valid state is kept)
-  double time_limit_seconds = std::numeric_limits<double>::infinity();
+  /// the run's hard stop (null: none), read after each iteration (the best valid state is kept)
+  const Time_limit* time_limit = nullptr;
   /// reached when every boundary vertex is within tolerance × mean edge length of its anchor
   double tolerance = 1e-3;
   /// rings of hexes around the displaced boundary vertices; < 0: the whole mesh
@@ -260,9 +261,7 @@ public:
     // when a few cannot reach)
     // the SJ floor starts at the input's minimum (never lower it) and is
     // relaxed towards min_sj_fraction × that minimum only when the run stalls
-    auto out_of_time = [&] {
-      return std::chrono::duration<double>(Clock::now() - start).count() > m_s.time_limit_seconds;
-    };
+    auto out_of_time = [&] { return time_limit_reached(m_s.time_limit); };
     double fraction = (std::max)(1., m_s.min_sj_fraction);
     m_floor = (std::max)(0., fraction * rep.min_sj_before);
     std::vector<Vec3> best = points;

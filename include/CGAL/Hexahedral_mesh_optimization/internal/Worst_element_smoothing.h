@@ -46,10 +46,10 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -64,7 +64,8 @@ struct Worst_element_smoothing_settings
   double band = 0.05;             ///< also work on elements within `band` of the MSJ
   int max_sweeps = 200;
   int steps_per_vertex = 3;
-  double time_limit_seconds = 10.;
+  /// the run's hard stop (null: none), read between vertices
+  const Time_limit* time_limit = nullptr;
   double min_gain = 1e-5;         ///< a sweep that raises the MSJ by less ends the run (after `patience` sweeps)
   int patience = 3;
   /// largest distance between the boundary around a moved vertex and the
@@ -98,8 +99,6 @@ public:
   {
     m_max_deviation = (m_target && m_guard) ? s.max_surface_deviation : std::numeric_limits<double>::infinity();
     m_guarded = s.use_guard && m_guard && std::isfinite(m_max_deviation);
-    typedef std::chrono::steady_clock Clock;
-    const auto start = Clock::now();
     const std::size_t nh = m_topo.number_of_hexes();
     std::vector<double> sj(nh);
     for(std::size_t h = 0; h < nh; ++h) sj[h] = hex_sj(points, h);
@@ -109,7 +108,7 @@ public:
     int idle = 0;
     for(int sweep = 0; sweep < s.max_sweeps; ++sweep)
     {
-      if(std::chrono::duration<double>(Clock::now() - start).count() > s.time_limit_seconds) break;
+      if(time_limit_reached(s.time_limit)) break;
       const double msj = *std::min_element(sj.begin(), sj.end());
       if(msj >= s.target_sj) break;
       const double goal = (std::min)(s.target_sj, msj + s.band);
@@ -122,7 +121,10 @@ public:
       std::sort(order.begin(), order.end());
       ++rep.sweeps;
       for(const auto& o : order)
+      {
+        if(time_limit_reached(s.time_limit)) break;
         rep.moves += improve_vertex(points, o.second, sj, s.steps_per_vertex);
+      }
       double now = *std::min_element(sj.begin(), sj.end());
       if(now - msj < s.min_gain && s.element_moves)
       {
@@ -132,7 +134,8 @@ public:
         for(std::size_t h = 0; h < nh; ++h)
           if(sj[h] < now + 0.5 * s.band) worst.push_back({sj[h], h});
         std::sort(worst.begin(), worst.end());
-        for(const auto& w : worst) rep.moves += improve_element(points, w.second, sj);
+        for(const auto& w : worst)
+          if(!time_limit_reached(s.time_limit)) rep.moves += improve_element(points, w.second, sj);
         now = *std::min_element(sj.begin(), sj.end());
       }
       idle = (now - msj < s.min_gain) ? idle + 1 : 0;

@@ -1,0 +1,105 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_OPTIMIZATION_SCHEDULE_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_OPTIMIZATION_SCHEDULE_H
+
+// The schedule of the two drivers (Hex_mesh_untangler.h and
+// Hex_mesh_quality_improver.h): how much work each stage may do and when it
+// has converged. Every stage ends when it reaches its target, when it
+// converges (its minimum, or its energy, improved by less than the ε below
+// over the number of sweeps below), or at a work cap counted in rounds,
+// sweeps, passes, iterations or turns. Nothing here is a time: the run's time
+// limit is a hard stop only (Time_limit.h), so the same input and options
+// give the same output on any machine and under any load.
+//
+// The values were chosen on the shared meshes; what was measured is in the
+// manual's implementation notes (doc/Hexahedral_mesh_optimization).
+
+#include <cstddef>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Optimization_schedule
+{
+  // ---- untangling (Hex_mesh_untangler.h)
+
+  /// rings of hexes around the inverted ones in the regions of the stage
+  /// "interior" (the barrier with every boundary vertex fixed)
+  int interior_rings = 3;
+  /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
+  /// earlier by this many consecutive rounds that free nothing (the barrier
+  /// takes over), and regions above this many hexes are left to the barrier
+  /// (their sparse Cholesky factorisation grows much faster than their size)
+  int edge_angle_rounds = 60;
+  int edge_angle_stalled_rounds = 8;
+  std::size_t edge_angle_max_region_hexes = 3000;
+  /// the stage "barrier": one pass per weight, in units of w0 (moving a
+  /// vertex one mean edge off its anchor costs as much as one well-shaped
+  /// frame), each on regions one ring wider than the previous; sliding along
+  /// the surface costs `barrier_sliding_fraction` of the weight
+  double barrier_weights_relaxed[4] = {100., 10., 1., 1.};
+  double barrier_weights_fixed[2] = {1000., 1000.};
+  double barrier_sliding_fraction = 0.1;
+  /// the stage "surface": outer passes, and the residual (in mean edges)
+  /// under which a boundary vertex is on the target surface
+  int surface_passes = 4;
+  double surface_residual_edges = 0.1;
+
+  // ---- quality (Hex_mesh_quality_improver.h)
+
+  /// SLIM iterations of the pull-back
+  int pull_back_iterations = 40;
+  /// sweeps of the surface restoration
+  int restoration_sweeps = 8;
+  /// the MSJ stages: targets 0, `msj_stage_step`, 2 × that, … ; in each, the
+  /// edge-angle passes go on while one raises the MSJ by at least
+  /// `msj_stage_min_gain`, at most `msj_stage_edge_angle_passes` times, each
+  /// of at most `msj_stage_rounds` rounds
+  double msj_stage_step = 0.1;
+  double msj_stage_min_gain = 0.005;
+  int msj_stage_edge_angle_passes = 8;
+  int msj_stage_rounds = 3;
+  /// the surface guard's bound in the MSJ stages, relative to the tolerance,
+  /// and the one of their second run when the first ends above the
+  /// tolerance; the quads whose samples come within `msj_dense_sampling`
+  /// of the tolerance are sampled on a fine grid too
+  double msj_guard_margin = 0.9;
+  double msj_guard_retry_margin = 0.75;
+  double msj_dense_sampling = 0.7;
+  /// the max-min smoothing (Worst_element_smoothing.h): at most this many
+  /// sweeps; `max_min_patience` sweeps in a row that raise the MSJ by less
+  /// than `max_min_min_gain` end it
+  int max_min_sweeps = 200;
+  int max_min_patience = 3;
+  double max_min_min_gain = 1e-5;
+  /// the turns (one focused ASJ pass near the elements below MSJ +
+  /// `turn_focus_band`, then the max-min smoothing toward the target): at
+  /// most `max_turns`; a turn that raises the MSJ by less than
+  /// `turn_min_gain` lowers the ASJ pass's floor by `turn_floor_drop` for the
+  /// next ones, and a second such turn ends them. The guard of the turns and
+  /// of the final smoothing starts at `turn_guard` of the tolerance and is
+  /// halved after a turn undone for its surface error, down to
+  /// `min_turn_guard`
+  int max_turns = 40;
+  double turn_focus_band = 0.2;
+  double turn_min_gain = 0.001;
+  double turn_floor_drop = 0.03;
+  double turn_guard = 0.7;
+  double min_turn_guard = 0.15;
+  double turn_dense_sampling = 0.5;
+  /// the final ASJ smoothing: at most this many Gauss-Seidel passes; a pass
+  /// that raises the ASJ by less than `asj_min_gain` ends it
+  int asj_passes = 30;
+  double asj_min_gain = 1e-4;
+};
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_OPTIMIZATION_SCHEDULE_H

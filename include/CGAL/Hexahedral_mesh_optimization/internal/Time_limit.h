@@ -1,0 +1,76 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_TIME_LIMIT_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_TIME_LIMIT_H
+
+// The time limit of a run: a hard stop, and nothing else. No stage reads the
+// clock to decide how much work to do (stages end on convergence or on work
+// caps counted in sweeps, passes or iterations, see Optimization_schedule.h),
+// so the same input and options give the same output whatever the machine's
+// load. The only question a stage asks the clock is `reached()`, at its safe
+// points (between vertices, regions, iterations); once it answers yes it
+// answers yes for good, every stage then stops where it is, the drivers go
+// back to the last state they checked, and the result says that the limit
+// fired. Without a limit (the default) `reached()` never reads the clock.
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+class Time_limit
+{
+  typedef std::chrono::steady_clock Clock;
+
+public:
+  /// no limit
+  Time_limit() = default;
+  /// `seconds` from now; a value that is not a positive finite number means no limit
+  explicit Time_limit(double seconds) { reset(seconds); }
+
+  Time_limit(const Time_limit&) = delete;
+  Time_limit& operator=(const Time_limit&) = delete;
+
+  void reset(double seconds)
+  {
+    m_limited = std::isfinite(seconds) && seconds > 0.;
+    m_reached.store(false);
+    if(m_limited)
+      m_deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  }
+
+  bool is_limited() const { return m_limited; }
+
+  /// whether the limit has passed (sticky; safe to call from several threads)
+  bool reached() const
+  {
+    if(!m_limited) return false;
+    if(m_reached.load(std::memory_order_relaxed)) return true;
+    if(Clock::now() < m_deadline) return false;
+    m_reached.store(true, std::memory_order_relaxed);
+    return true;
+  }
+
+  /// whether `reached()` has answered yes (does not read the clock)
+  bool fired() const { return m_reached.load(std::memory_order_relaxed); }
+
+private:
+  bool m_limited = false;
+  Clock::time_point m_deadline;
+  mutable std::atomic<bool> m_reached{false};
+};
+
+/// `limit->reached()`, false for a null limit
+inline bool time_limit_reached(const Time_limit* limit) { return limit != nullptr && limit->reached(); }
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_TIME_LIMIT_H
