@@ -1,48 +1,146 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Benchmark over the shared data. Two modes:
+// Benchmark over the shared data, and scaling runs on generated meshes.
+//
+//   benchmark_hex_mesh_optimization [DATA_DIR] [--untangle] [--only SUBSTRING]
+//                                   [--threads N | --threads-compare]
+//   benchmark_hex_mesh_optimization [DATA_DIR] --scaling [--scaling-max-hexes N]
+//                                   [--untangle] [--only SUBSTRING] [--threads N | --threads-compare]
+//
+// DATA_DIR defaults to HMO_SHARED_DATA_DIR (../shared/data seen from the
+// repository root). Every mode prints a Markdown table.
+//
+// Modes:
+//   default    : the whole pipeline `CGAL::optimize_hex_mesh` (untangle,
+//                pull-back, MSJ stages, ASJ smoothing) on the untangling
+//                inputs, on the stress tests below and on the valid meshes
+//                of amips/ and low-quality/. On a row with a published Xu &
+//                Chen surface error, that error is the surface tolerance
+//                given to the quality stages (the comparison asks for an
+//                error no larger than the paper's); elsewhere the default
+//                0.005.
 //   --untangle : `CGAL::untangle_hex_mesh` on every untangling input, plus
 //                stress tests made by perturbing the valid meshes of
 //                stress-base/ until at least 80 % of their hexes are inverted
 //                (fixed seed, so runs compare), twice: the interior vertices
 //                only (the boundary stays on the surface; the paper's fandisk
 //                error, 0.0048, suggests that is what it did) and every
-//                vertex (the boundary must also be found again);
-//   default    : the whole pipeline `CGAL::optimize_hex_mesh` (untangle,
-//                pull-back, MSJ stages, ASJ smoothing) on the same inputs and
-//                on the valid meshes of amips/ and low-quality/. On a row
-//                with a published Xu & Chen surface error, that error is the
-//                surface tolerance given to the quality stages (the
-//                comparison asks for an error no larger than the paper's);
-//                elsewhere the default 0.005.
-// bunny_dualsheet runs twice: with its own boundary as reference and with
-// surfaces/bunny_reference.obj; both errors are also measured against the obj.
-// Prints a Markdown table with the published figures beside ours.
+//                vertex (the boundary must also be found again).
+//   In both, bunny_dualsheet runs twice: with its own boundary as reference
+//   and with surfaces/bunny_reference.obj; both errors are also measured
+//   against the obj. The published figures are printed beside ours. When
+//   DATA_DIR is absent the program prints one line and exits with status 0.
+//   Columns of these two modes:
+//     seconds     : wall time of read -> optimise -> write: reading the input,
+//                   the optimiser call, and writing the output with
+//                   `CGAL::IO::write_hex_mesh` to a temporary file in /tmp
+//                   (same format as the input; deleted afterwards). The
+//                   stress tests' perturbation and the benchmark's own
+//                   measurements (surface distances) are not counted;
+//     optimiser s : the optimiser's own `Optimization_result::seconds`;
+//     hash        : 64-bit FNV-1a (offset 0xcbf29ce484222325, prime
+//                   0x100000001b3) over the output's vertex coordinates: for
+//                   every point in order, x, y, z, each double's IEEE-754 bit
+//                   pattern fed least significant byte first (the memory
+//                   order on x86). Same input and options give the same hash
+//                   when the optimiser is deterministic.
 //
-//   benchmark_hex_mesh_optimization [DATA_DIR] [--untangle] [--only SUBSTRING]
+//   --scaling  : scaling cases on generated meshes, each run in its own
+//                forked process (one at a time):
+//                  grid n=50 (125k hexes) and n=100 (1M hexes), 1 % of the
+//                  hexes inverted (make_grid below, seed 1), with
+//                  `CGAL::untangle_hex_mesh` and with `CGAL::optimize_hex_mesh`;
+//                  amips/fertility_gregson11.mesh refined 1->8 once (159k
+//                  hexes) and twice (1.27M hexes), with `CGAL::optimize_hex_mesh`
+//                  (refine_1_to_8 below; the fertility rows are skipped when
+//                  DATA_DIR is absent, the grid rows run anyway).
+//                Every case uses the optimiser's default parameters. Columns:
+//                inverted and MSJ before and after (from the result), set-up
+//                s (from the optimiser call to the visitor's first
+//                `stage_started`; "–" when no stage started), total s (wall
+//                time of the optimiser call; "(time limit)" when the result
+//                says its time limit fired), peak memory (the child
+//                process's maximum resident set size from wait4(): it
+//                includes generating the input and the few MB the process
+//                inherited from the parent, printed above the table), hash
+//                (as above). Generating the input is not timed.
+//
+// Options:
+//   --untangle              the --untangle mode; with --scaling, only the
+//                           `untangle_hex_mesh` cases
+//   --only SUBSTRING        only the rows (or scaling cases) whose name
+//                           contains SUBSTRING
+//   --threads N             run under tbb::global_control(max_allowed_parallelism, N)
+//                           (without it: TBB's default parallelism)
+//   --threads-compare       run every row (or scaling case) twice, under 1
+//                           and under 2 threads: both wall times ("s (1 thr)",
+//                           "s (2 thr)"), both optimiser times and the hash,
+//                           or "hash mismatch" with both hashes when the two
+//                           outputs differ (the other columns are the 1-thread
+//                           run's; in --scaling, one row per thread count)
+//   --scaling               the scaling mode above
+//   --scaling-max-hexes N   with --scaling, skip the cases of more than N
+//                           hexes (e.g. 200000: only the 125k and 159k cases)
+//   -h, --help              this text
+// --threads and --threads-compare need TBB (CGAL_LINKED_WITH_TBB); without it
+// they are refused (exit status 2), as is any unknown option.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
 #include <CGAL/improve_hex_mesh_quality.h>
 #include <CGAL/untangle_hex_mesh.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
-#include <sys/stat.h>
+#include <unordered_map>
 #include <vector>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Indexed_hex_mesh<K::Point_3> Mesh;
 namespace HMO = CGAL::Hexahedral_mesh_optimization;
+namespace HP = CGAL::hex_mesh_parameters;
+typedef std::chrono::steady_clock Clock;
+
+static double seconds_since(Clock::time_point t)
+{
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// ---------------------------------------------------------------------------
+// Published figures
 
 struct Published { std::string row[10]; };
 
@@ -67,6 +165,89 @@ static std::string fig(const std::string& msj, const std::string& asj, const std
   if(msj.empty()) return "–";
   return msj + " / " + asj + " / " + err;
 }
+
+// ---------------------------------------------------------------------------
+// Output hash, threads, the visitor
+
+/// 64-bit FNV-1a over the IEEE-754 bit patterns of the coordinates, x, y, z
+/// of every point in order, each double least significant byte first
+static std::uint64_t coordinates_hash(const Mesh& m)
+{
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for(const K::Point_3& p : m.points)
+    for(const double c : {p.x(), p.y(), p.z()})
+    {
+      std::uint64_t bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      for(int b = 0; b < 8; ++b)
+      {
+        h ^= (bits >> (8 * b)) & 0xffu;
+        h *= 0x100000001b3ull;
+      }
+    }
+  return h;
+}
+
+static std::string hex16(std::uint64_t h)
+{
+  char b[24];
+  std::snprintf(b, sizeof b, "%016" PRIx64, h);
+  return b;
+}
+
+/// the parallelism of one run: TBB's default (`threads` 0) or at most
+/// `threads` threads, for the lifetime of the object
+class Thread_limit
+{
+public:
+  explicit Thread_limit(int threads)
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    if(threads > 0)
+      m_control.reset(new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(threads)));
+#else
+    (void)threads;
+#endif
+  }
+
+private:
+#ifdef CGAL_LINKED_WITH_TBB
+  std::unique_ptr<tbb::global_control> m_control;
+#endif
+};
+
+/// records when the first stage starts: the optimiser's set-up time
+struct Setup_visitor : HMO::Default_optimization_visitor
+{
+  Clock::time_point start = Clock::now();
+  double setup_seconds = -1.;
+
+  void stage_started(const std::string& /*name*/, std::size_t /*bad_elements*/)
+  {
+    if(setup_seconds < 0.) setup_seconds = seconds_since(start);
+  }
+};
+
+
+/// The optimiser calls, all with the same parameter types (each instantiation
+/// of the optimiser costs compile time): untangling or the whole pipeline,
+/// with or without a reference surface. `tolerance` is the pipeline's
+/// surface tolerance (its default is 0.005).
+static HMO::Optimization_result run_optimiser(Mesh& mesh, bool untangle_only, const HMO::internal::Triangle_surface& reference,
+                                              double tolerance, Setup_visitor& visitor)
+{
+  const auto np = CGAL::parameters::visitor(std::ref(visitor));
+  visitor.start = Clock::now();
+  if(untangle_only)
+    return reference.is_empty() ? CGAL::untangle_hex_mesh(mesh, np)
+                                : CGAL::untangle_hex_mesh(mesh, HP::reference_surface(reference, np));
+  const auto npt = HP::surface_tolerance(tolerance, np);
+  return reference.is_empty() ? CGAL::optimize_hex_mesh(mesh, npt)
+                              : CGAL::optimize_hex_mesh(mesh, HP::reference_surface(reference, npt));
+}
+
+// ---------------------------------------------------------------------------
+// Input generators
 
 /// Perturbs vertices by random vectors of growing amplitude until at least
 /// `fraction` of the hexes are inverted: every vertex, or (`interior_only`)
@@ -93,23 +274,245 @@ static std::size_t perturb(Mesh& m, double fraction, unsigned seed, bool interio
   return CGAL::hex_mesh_quality(m).inverted;
 }
 
-int main(int argc, char** argv)
+/// the position of corner q of a hexahedron in its own (a, b, c) frame, MEDIT/VTK
+/// order: 0-3 the bottom face (c = 0) counter-clockwise seen from above, q+4 above q
+static const int hex_corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+
+static double scaled_jacobian_of(const Mesh& m, std::size_t h)
 {
-  std::string dir = HMO_SHARED_DATA_DIR, only;
-  bool untangle_only = false;
-  for(int i = 1; i < argc; ++i)
+  std::array<K::Point_3, 8> p;
+  for(int q = 0; q < 8; ++q) p[q] = m.points[m.hexahedra[h][q]];
+  return CGAL::hex_scaled_jacobian(p);
+}
+
+/// An n×n×n grid of the unit cube (edge 1/n), vertex i + (n+1)(j + (n+1)k) at
+/// (i, j, k)/n, hexes in MEDIT/VTK order. Then interior vertices drawn at
+/// random (std::mt19937 seeded with `seed`), never two in one hex, are moved
+/// by a random vector (uniform direction, length 0.6-0.9 of the spacing)
+/// until at least `fraction_inverted` of the hexes are inverted (scaled
+/// Jacobian < 0). Since no hex holds two moved vertices, each one's inverted
+/// hexes form an independent region. `displaced`, if given, receives the
+/// number of vertices moved.
+static Mesh make_grid(std::size_t n, double fraction_inverted, unsigned seed, std::size_t* displaced = nullptr)
+{
+  Mesh m;
+  const std::size_t n1 = n + 1;
+  const auto id = [n1](std::size_t i, std::size_t j, std::size_t k) { return i + n1 * (j + n1 * k); };
+  m.points.reserve(n1 * n1 * n1);
+  for(std::size_t k = 0; k <= n; ++k)
+    for(std::size_t j = 0; j <= n; ++j)
+      for(std::size_t i = 0; i <= n; ++i)
+        m.points.push_back(K::Point_3(double(i) / double(n), double(j) / double(n), double(k) / double(n)));
+  m.hexahedra.reserve(n * n * n);
+  for(std::size_t k = 0; k < n; ++k)
+    for(std::size_t j = 0; j < n; ++j)
+      for(std::size_t i = 0; i < n; ++i)
+        m.hexahedra.push_back({{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)}});
+  if(displaced) *displaced = 0;
+  if(n < 2 || fraction_inverted <= 0.) return m;
+
+  const double spacing = 1. / double(n);
+  const std::size_t hexes = n * n * n;
+  const double target = fraction_inverted * double(hexes);
+  std::vector<char> blocked(m.points.size(), 0); // within one step of a moved vertex
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(1, n - 1);
+  std::normal_distribution<double> gauss(0., 1.);
+  std::uniform_real_distribution<double> length(0.6, 0.9);
+  std::size_t inverted = 0;
+  for(std::size_t attempt = 0; double(inverted) < target && attempt < 20 * hexes; ++attempt)
   {
-    const std::string a = argv[i];
-    if(a == "--only" && i + 1 < argc) only = argv[++i];
-    else if(a == "--untangle") untangle_only = true;
-    else dir = a;
+    const std::size_t i = pick(rng), j = pick(rng), k = pick(rng); // in declaration order
+    const std::size_t v = id(i, j, k);
+    if(blocked[v]) continue;
+    double d[3], norm2 = 0.;
+    do
+    {
+      norm2 = 0.;
+      for(double& c : d)
+      {
+        c = gauss(rng);
+        norm2 += c * c;
+      }
+    } while(norm2 < 1e-12);
+    const double scale = length(rng) * spacing / std::sqrt(norm2);
+    m.points[v] = m.points[v] + K::Vector_3(scale * d[0], scale * d[1], scale * d[2]);
+    if(displaced) ++*displaced;
+    for(std::size_t c = k - 1; c <= k + 1; ++c)
+      for(std::size_t b = j - 1; b <= j + 1; ++b)
+        for(std::size_t a = i - 1; a <= i + 1; ++a)
+          blocked[id(a, b, c)] = 1;
+    // the 8 hexes around v: only v moved in them
+    for(std::size_t c = k - 1; c <= k; ++c)
+      for(std::size_t b = j - 1; b <= j; ++b)
+        for(std::size_t a = i - 1; a <= i; ++a)
+          if(scaled_jacobian_of(m, a + n * (b + n * c)) < 0.) ++inverted;
   }
-  struct stat st;
-  if(::stat((dir + "/README.md").c_str(), &st) != 0)
+  return m;
+}
+
+struct Index_array_hash
+{
+  template <std::size_t N>
+  std::size_t operator()(const std::array<std::size_t, N>& a) const
   {
-    std::cout << "shared data folder " << dir << " is absent: nothing to benchmark" << std::endl;
-    return 0;
+    std::uint64_t h = 0;
+    for(std::size_t v : a)
+    {
+      h = (h ^ std::uint64_t(v)) * 0x9e3779b97f4a7c15ull;
+      h ^= h >> 29;
+    }
+    return std::size_t(h);
   }
+};
+
+/// Every hex split into 8 by its edge midpoints, face centres and centre (the
+/// images of the parameters 0, 1/2, 1 under its trilinear map), each child in
+/// its parent's frame, so orientation is kept. The new vertices shared by
+/// several hexes are made once: edge midpoints keyed by the sorted vertex
+/// pair, face centres by the sorted 4-tuple. The input's points keep their
+/// indices; only points and hexahedra are produced (no MEDIT boundary
+/// entities).
+static Mesh refine_1_to_8(const Mesh& in)
+{
+  Mesh out;
+  out.points = in.points;
+  out.hexahedra.reserve(8 * in.hexahedra.size());
+  std::unordered_map<std::array<std::size_t, 2>, std::size_t, Index_array_hash> edge_midpoint;
+  std::unordered_map<std::array<std::size_t, 4>, std::size_t, Index_array_hash> face_centre;
+  edge_midpoint.reserve(4 * in.hexahedra.size());
+  face_centre.reserve(4 * in.hexahedra.size());
+  for(const auto& h : in.hexahedra)
+  {
+    std::size_t node[3][3][3]; // lattice (0, 1/2, 1)^3 of the hex's frame
+    for(int a = 0; a < 3; ++a)
+      for(int b = 0; b < 3; ++b)
+        for(int c = 0; c < 3; ++c)
+        {
+          const int abc[3] = {a, b, c};
+          std::array<std::size_t, 8> corners;
+          std::size_t count = 0;
+          for(int q = 0; q < 8; ++q)
+          {
+            bool in_span = true;
+            for(int t = 0; t < 3; ++t)
+              if(abc[t] != 1 && abc[t] != 2 * hex_corner[q][t]) in_span = false;
+            if(in_span) corners[count++] = h[q];
+          }
+          const auto new_point = [&]() {
+            double x = 0., y = 0., z = 0.;
+            for(std::size_t q = 0; q < count; ++q)
+            {
+              const K::Point_3& p = in.points[corners[q]];
+              x += p.x();
+              y += p.y();
+              z += p.z();
+            }
+            out.points.push_back(K::Point_3(x / double(count), y / double(count), z / double(count)));
+            return out.points.size() - 1;
+          };
+          std::size_t& v = node[a][b][c];
+          if(count == 1)
+            v = corners[0];
+          else if(count == 2)
+          {
+            std::array<std::size_t, 2> key = {{(std::min)(corners[0], corners[1]), (std::max)(corners[0], corners[1])}};
+            const auto it = edge_midpoint.find(key);
+            v = it != edge_midpoint.end() ? it->second : (edge_midpoint[key] = new_point());
+          }
+          else if(count == 4)
+          {
+            std::array<std::size_t, 4> key = {{corners[0], corners[1], corners[2], corners[3]}};
+            std::sort(key.begin(), key.end());
+            const auto it = face_centre.find(key);
+            v = it != face_centre.end() ? it->second : (face_centre[key] = new_point());
+          }
+          else
+            v = new_point();
+        }
+    for(int a = 0; a < 2; ++a)
+      for(int b = 0; b < 2; ++b)
+        for(int c = 0; c < 2; ++c)
+        {
+          Mesh::Hexahedron child;
+          for(int q = 0; q < 8; ++q)
+            child[q] = node[a + hex_corner[q][0]][b + hex_corner[q][1]][c + hex_corner[q][2]];
+          out.hexahedra.push_back(child);
+        }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// The benchmark rows (default and --untangle modes)
+
+struct Row_run
+{
+  std::string error;                              // empty on success
+  Mesh input;                                     // the optimiser's input (if asked for)
+  Mesh output;
+  HMO::internal::Triangle_surface reference;      // given to the optimiser (empty: the input's boundary)
+  HMO::Optimization_result result;
+  double seconds = 0.;                            // read + optimise + write
+  std::uint64_t hash = 0;
+};
+
+static std::string extension_of(const std::string& name)
+{
+  const std::size_t dot = name.rfind('.');
+  std::string e = dot == std::string::npos ? std::string(".mesh") : name.substr(dot);
+  for(char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+/// One run of a row: read, (stress tests: perturb), optimise, write to a
+/// temporary file, under at most `threads` threads (0: TBB's default)
+static Row_run run_row(const std::string& dir, const std::string& name, bool stress, bool interior_only,
+                       const HMO::internal::Triangle_surface* obj, double tolerance, bool untangle_only,
+                       int threads, bool keep_input)
+{
+  static int counter = 0;
+  Row_run run;
+  const Thread_limit limit(threads);
+  Mesh mesh;
+  CGAL::IO::Hex_mesh_io_error err;
+  std::vector<std::string> warnings;
+  const Clock::time_point read_start = Clock::now();
+  if(!CGAL::IO::read_hex_mesh(dir + "/" + name, mesh, &err, &warnings))
+  {
+    run.error = std::string("read error: ") + err.what();
+    return run;
+  }
+  const double read_seconds = seconds_since(read_start);
+  if(stress)
+  {
+    // the surface error of a stress test is measured against the unperturbed mesh
+    HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(mesh, K()), run.reference);
+    perturb(mesh, 0.8, 1, interior_only);
+  }
+  else if(obj)
+    run.reference = *obj;
+  if(keep_input) run.input = mesh;
+
+  const std::string tmp = "/tmp/hmo_benchmark_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) +
+                          extension_of(name);
+  Setup_visitor visitor;
+  const Clock::time_point start = Clock::now();
+  run.result = run_optimiser(mesh, untangle_only, run.reference, tolerance, visitor);
+  const bool written = CGAL::IO::write_hex_mesh(tmp, mesh, CGAL::IO::Hex_mesh_fields(), &err);
+  run.seconds = read_seconds + seconds_since(start);
+  std::remove(tmp.c_str());
+  if(!written) run.error = std::string("write error: ") + err.what();
+  run.hash = coordinates_hash(mesh);
+  run.output = std::move(mesh);
+  return run;
+}
+
+static int benchmark_rows(const std::string& dir, bool untangle_only, const std::string& only,
+                          const std::vector<int>& thread_runs)
+{
   const auto published = read_published(HMO_PUBLISHED_CSV);
   std::vector<std::string> inputs = {
     "edge-cone/block_in.mesh", "edge-cone/bunny_in.mesh", "edge-cone/bust_in.mesh", "edge-cone/cap_in.mesh",
@@ -124,8 +527,27 @@ int main(int argc, char** argv)
   HMO::internal::Triangle_surface bunny_obj;
   CGAL::IO::read_reference_surface(dir + "/surfaces/bunny_reference.obj", bunny_obj);
 
-  std::cout << "| model | hexes | inverted in | inverted out | MSJ out | ASJ out | surface error (metro's normaliser) | seconds | stages | edge-cone MSJ/ASJ/err | Xu & Chen MSJ/ASJ/err |\n"
-            << "|---|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n";
+  const bool compare = thread_runs.size() > 1;
+  std::string time_columns, time_rule;
+  if(compare)
+  {
+    time_columns = "s (1 thr) | s (2 thr) | optimiser s (1 thr) | optimiser s (2 thr)";
+    time_rule = "---:|---:|---:|---:";
+  }
+  else if(thread_runs[0] > 0)
+  {
+    const std::string t = " (" + std::to_string(thread_runs[0]) + " thr)";
+    time_columns = "seconds" + t + " | optimiser s" + t;
+    time_rule = "---:|---:";
+  }
+  else
+  {
+    time_columns = "seconds | optimiser s";
+    time_rule = "---:|---:";
+  }
+  std::cout << "| model | hexes | inverted in | inverted out | MSJ out | ASJ out | surface error (metro's normaliser) | "
+            << time_columns << " | hash | stages | edge-cone MSJ/ASJ/err | Xu & Chen MSJ/ASJ/err |\n"
+            << "|---|---:|---:|---:|---:|---:|---:|" << time_rule << "|---|---|---|---|\n";
   for(const std::string& row : inputs)
   {
     if(!only.empty() && row.find(only) == std::string::npos) continue;
@@ -134,35 +556,27 @@ int main(int argc, char** argv)
     };
     const bool with_obj = ends_with("+obj"), interior_only = ends_with("+interior");
     const std::string name = row.substr(0, row.find('+'));
-    Mesh mesh;
-    CGAL::IO::Hex_mesh_io_error err;
-    std::vector<std::string> warnings;
-    if(!CGAL::IO::read_hex_mesh(dir + "/" + name, mesh, &err, &warnings))
-    {
-      std::cout << "| " << name << " | read error: " << err.what() << " |\n";
-      continue;
-    }
     const bool stress = name.rfind("stress-base/", 0) == 0;
-    HMO::internal::Triangle_surface reference = with_obj ? bunny_obj : HMO::internal::Triangle_surface();
-    if(stress)
-    {
-      // the surface error of a stress test is measured against the unperturbed mesh
-      HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(mesh, K()), reference);
-      perturb(mesh, 0.8, 1, interior_only);
-    }
     const auto it = published.find(name);
     double tolerance = 0.005;
     if(it != published.end() && !it->second.row[9].empty()) tolerance = std::stod(it->second.row[9]);
-    namespace HP = CGAL::hex_mesh_parameters;
-    const auto np = HP::surface_tolerance(tolerance);
-    HMO::internal::Triangle_surface measured_against = reference;
-    if(measured_against.is_empty())
-      HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(mesh, K()), measured_against);
-    HMO::Optimization_result r;
-    if(untangle_only)
-      r = reference.is_empty() ? CGAL::untangle_hex_mesh(mesh) : CGAL::untangle_hex_mesh(mesh, HP::reference_surface(reference));
-    else
-      r = reference.is_empty() ? CGAL::optimize_hex_mesh(mesh, np) : CGAL::optimize_hex_mesh(mesh, HP::reference_surface(reference, np));
+
+    std::vector<Row_run> runs;
+    for(std::size_t t = 0; t < thread_runs.size(); ++t)
+    {
+      runs.push_back(run_row(dir, name, stress, interior_only, with_obj ? &bunny_obj : nullptr, tolerance,
+                             untangle_only, thread_runs[t], t == 0));
+      if(!runs.back().error.empty()) break;
+    }
+    if(!runs.back().error.empty())
+    {
+      std::cout << "| " << row << " | " << runs.back().error << " |" << std::endl;
+      continue;
+    }
+    const Row_run& run = runs[0];
+    const HMO::Optimization_result& r = run.result;
+    const Mesh& mesh = run.output;
+
     std::string stages;
     for(const auto& s : r.stages)
     {
@@ -171,22 +585,344 @@ int main(int argc, char** argv)
       std::snprintf(b, sizeof b, "%s %zu→%zu %.1fs", s.name.c_str(), s.inverted_before, s.inverted_after, s.seconds);
       stages += (stages.empty() ? "" : ", ") + std::string(b);
     }
+    if(r.time_limit_reached) stages += "; time limit reached";
     if(!untangle_only) stages += "; tolerance " + std::to_string(tolerance).substr(0, 6);
     if(name == "inverted/bunny_dualsheet.vtk" && !bunny_obj.is_empty())
       stages += "; error vs bunny_reference.obj " + std::to_string(CGAL::hex_mesh_surface_error(mesh, bunny_obj)).substr(0, 6);
     // the papers' figures come from metro, which divides by the diagonal of
     // the union of both boxes enlarged by 2 % per side (surface_distance.h):
     // shown in brackets, to compare like with like
+    HMO::internal::Triangle_surface measured_against = run.reference;
+    if(measured_against.is_empty())
+      HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(run.input, K()), measured_against);
     const HMO::internal::Surface_distance sd =
       HMO::internal::surface_distance(HMO::internal::make_hex_mesh_arrays(mesh, K()), measured_against);
+
+    std::string times, hash = hex16(run.hash);
+    char b[64];
+    for(const Row_run& x : runs)
+    {
+      std::snprintf(b, sizeof b, "%.2f | ", x.seconds);
+      times += b;
+    }
+    for(const Row_run& x : runs)
+    {
+      std::snprintf(b, sizeof b, "%.2f | ", x.result.seconds);
+      times += b;
+    }
+    if(compare && runs[1].hash != run.hash)
+      hash = "hash mismatch: " + hex16(run.hash) + " (1 thr), " + hex16(runs[1].hash) + " (2 thr)";
+
     char line[1024];
-    std::snprintf(line, sizeof line, "| %s%s | %zu | %zu | %zu | %.3f | %.3f | %.4f (%.4f) | %.2f | %s |",
+    std::snprintf(line, sizeof line, "| %s%s | %zu | %zu | %zu | %.3f | %.3f | %.4f (%.4f) | %s%s | %s |",
                   name.c_str(), stress ? (interior_only ? " (interior perturbed)" : " (all vertices perturbed)") : (with_obj ? " (reference .obj)" : ""), mesh.hexahedra.size(), r.inverted_before,
-                  r.inverted_after, r.msj_after, r.asj_after, r.surface_error, sd.metro_relative(), r.seconds, stages.c_str());
+                  r.inverted_after, r.msj_after, r.asj_after, r.surface_error, sd.metro_relative(), times.c_str(),
+                  hash.c_str(), stages.c_str());
     std::cout << line << ' '
               << (it != published.end() ? fig(it->second.row[4], it->second.row[5], it->second.row[6]) : "–") << " | "
               << (it != published.end() ? fig(it->second.row[7], it->second.row[8], it->second.row[9]) : "–") << " |"
               << std::endl;
   }
   return 0;
+}
+
+// ---------------------------------------------------------------------------
+// --scaling
+
+struct Scaling_case
+{
+  std::string name;
+  std::size_t grid_n = 0;     // a grid case when > 0
+  int refinement_levels = 0;  // otherwise fertility refined this many times
+  bool untangle_only = false;
+  std::size_t hexes = 0;
+};
+
+/// The child's side: generate, optimise, send the measurements over `fd` as
+/// one tab-separated line ("ok", hexes, inverted in/out, MSJ in/out, set-up
+/// s, total s, time limit flag, hash; or "error", message).
+static void scaling_child(const Scaling_case& c, const std::string& fertility, int threads, int fd)
+{
+  std::string message;
+  {
+    const Thread_limit limit(threads);
+    Mesh mesh;
+    bool ok = true;
+    if(c.grid_n > 0)
+      mesh = make_grid(c.grid_n, 0.01, 1);
+    else
+    {
+      CGAL::IO::Hex_mesh_io_error err;
+      if(!CGAL::IO::read_hex_mesh(fertility, mesh, &err))
+      {
+        message = std::string("error\tread error: ") + err.what() + "\n";
+        ok = false;
+      }
+      for(int l = 0; ok && l < c.refinement_levels; ++l) mesh = refine_1_to_8(mesh);
+    }
+    if(ok)
+    {
+      Setup_visitor visitor;
+      const HMO::internal::Triangle_surface no_reference;
+      const Clock::time_point start = Clock::now();
+      const HMO::Optimization_result r = run_optimiser(mesh, c.untangle_only, no_reference, 0.005, visitor);
+      const double total = seconds_since(start);
+      char b[512];
+      std::snprintf(b, sizeof b, "ok\t%zu\t%zu\t%zu\t%.3f\t%.3f\t%.2f\t%.2f\t%d\t%s\n", mesh.hexahedra.size(),
+                    r.inverted_before, r.inverted_after, r.msj_before, r.msj_after, visitor.setup_seconds, total,
+                    int(r.time_limit_reached), hex16(coordinates_hash(mesh)).c_str());
+      message = b;
+    }
+  }
+  const char* p = message.data();
+  std::size_t left = message.size();
+  while(left > 0)
+  {
+    const ssize_t w = ::write(fd, p, left);
+    if(w <= 0) break;
+    p += w;
+    left -= std::size_t(w);
+  }
+}
+
+static std::vector<std::string> split_tabs(const std::string& s)
+{
+  std::vector<std::string> f;
+  std::stringstream ss(s);
+  std::string x;
+  while(std::getline(ss, x, '\t')) f.push_back(x);
+  return f;
+}
+
+/// Runs one case in a forked child and prints its row. Returns the output's
+/// hash ("" when the child failed).
+static std::string run_scaling_case(const Scaling_case& c, const std::string& fertility, int threads,
+                                    const std::string& label, const std::string& compare_with)
+{
+  int fds[2];
+  if(::pipe(fds) != 0)
+  {
+    std::cout << "| " << label << " | pipe() failed |" << std::endl;
+    return "";
+  }
+  std::cout.flush();
+  std::fflush(stdout);
+  const pid_t pid = ::fork();
+  if(pid < 0)
+  {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    std::cout << "| " << label << " | fork() failed |" << std::endl;
+    return "";
+  }
+  if(pid == 0)
+  {
+    ::close(fds[0]);
+    scaling_child(c, fertility, threads, fds[1]);
+    ::close(fds[1]);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string message;
+  char buffer[4096];
+  for(;;)
+  {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if(n <= 0) break;
+    message.append(buffer, std::size_t(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  struct rusage usage;
+  std::memset(&usage, 0, sizeof usage);
+  while(::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {}
+  const double peak_mb = double(usage.ru_maxrss) / 1024.; // ru_maxrss is in KiB on Linux
+
+  if(!message.empty() && message.back() == '\n') message.pop_back();
+  const std::vector<std::string> f = split_tabs(message);
+  if(f.size() != 10 || f[0] != "ok")
+  {
+    std::string why = f.size() >= 2 && f[0] == "error" ? f[1] : "no result";
+    if(WIFSIGNALED(status)) why += ", killed by signal " + std::to_string(WTERMSIG(status));
+    else if(WIFEXITED(status) && WEXITSTATUS(status) != 0) why += ", exit status " + std::to_string(WEXITSTATUS(status));
+    char b[64];
+    std::snprintf(b, sizeof b, "%.0f", peak_mb);
+    std::cout << "| " << label << " | " << c.hexes << " | " << why << " | | | | | | " << b << " | |" << std::endl;
+    return "";
+  }
+  const double setup = std::stod(f[6]);
+  std::string hash = f[9];
+  if(!compare_with.empty() && compare_with != hash) hash += " (hash mismatch with " + compare_with + ")";
+  char line[1024];
+  std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %s | %s | %s | %s%s | %.0f | %s |", label.c_str(),
+                f[1].c_str(), f[2].c_str(), f[3].c_str(), f[4].c_str(), f[5].c_str(),
+                setup < 0. ? "–" : f[6].c_str(), f[7].c_str(), f[8] == "1" ? " (time limit)" : "", peak_mb,
+                hash.c_str());
+  std::cout << line << std::endl;
+  return f[9];
+}
+
+static int scaling(const std::string& dir, bool have_data, bool untangle_only, const std::string& only,
+                   std::size_t max_hexes, const std::vector<int>& thread_runs)
+{
+  const std::string fertility = dir + "/amips/fertility_gregson11.mesh";
+  std::size_t fertility_hexes = 0;
+  if(have_data)
+  {
+    Mesh m;
+    CGAL::IO::Hex_mesh_io_error err;
+    if(CGAL::IO::read_hex_mesh(fertility, m, &err)) fertility_hexes = m.hexahedra.size();
+    else std::cout << "cannot read " << fertility << " (" << err.what() << "): its rows are skipped\n";
+  }
+  else
+    std::cout << "shared data folder " << dir << " is absent: the fertility rows are skipped\n";
+
+  std::vector<Scaling_case> cases;
+  const auto grid = [&](std::size_t n, bool u) {
+    Scaling_case c;
+    c.name = "grid n=" + std::to_string(n) + ", 1 % inverted, " + (u ? "--untangle" : "pipeline");
+    c.grid_n = n;
+    c.untangle_only = u;
+    c.hexes = n * n * n;
+    cases.push_back(c);
+  };
+  const auto refined = [&](int levels) {
+    Scaling_case c;
+    c.name = "fertility_gregson11 refined " + std::to_string(levels) + (levels == 1 ? " level" : " levels") + ", pipeline";
+    c.refinement_levels = levels;
+    c.hexes = fertility_hexes << (3 * levels);
+    cases.push_back(c);
+  };
+  grid(50, true);
+  grid(50, false);
+  refined(1);
+  grid(100, true);
+  grid(100, false);
+  refined(2);
+
+  struct rusage self;
+  ::getrusage(RUSAGE_SELF, &self);
+  std::cout << "scaling: grids of the unit cube with 1 % of their hexes inverted (seed 1); optimiser defaults; "
+            << "each case in its own process, whose peak memory includes the parent's "
+            << self.ru_maxrss / 1024 << " MB\n\n"
+            << "| case | hexes | inverted in | inverted out | MSJ in | MSJ out | set-up s | total s | peak memory MB | hash |\n"
+            << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  for(const Scaling_case& c : cases)
+  {
+    if(!only.empty() && c.name.find(only) == std::string::npos) continue;
+    if(untangle_only && !c.untangle_only) continue;
+    if(c.grid_n == 0 && fertility_hexes == 0) continue;
+    if(max_hexes > 0 && c.hexes > max_hexes)
+    {
+      std::cout << "| " << c.name << " | " << c.hexes << " | skipped (more than " << max_hexes << " hexes) | | | | | | | |"
+                << std::endl;
+      continue;
+    }
+    std::string first_hash;
+    for(std::size_t t = 0; t < thread_runs.size(); ++t)
+    {
+      const std::string label =
+        thread_runs[t] > 0 ? c.name + " (" + std::to_string(thread_runs[t]) + " thr)" : c.name;
+      const std::string h = run_scaling_case(c, fertility, thread_runs[t], label, t > 0 ? first_hash : "");
+      if(t == 0) first_hash = h;
+    }
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------
+
+static void usage(std::ostream& out)
+{
+  out << "usage: benchmark_hex_mesh_optimization [DATA_DIR] [--untangle] [--only SUBSTRING]\n"
+         "                                       [--threads N | --threads-compare]\n"
+         "                                       [--scaling [--scaling-max-hexes N]]\n"
+         "  (default)              the whole pipeline on the shared meshes, beside the published figures\n"
+         "  --untangle             untangling only (with --scaling: only the untangling cases)\n"
+         "  --only SUBSTRING       only the rows whose name contains SUBSTRING\n"
+         "  --threads N            at most N TBB threads\n"
+         "  --threads-compare      every row under 1 and under 2 threads; times and output hashes\n"
+         "  --scaling              generated grids (125k, 1M hexes) and refined fertility (159k, 1.27M)\n"
+         "  --scaling-max-hexes N  with --scaling, skip the cases of more than N hexes\n"
+         "DATA_DIR defaults to " HMO_SHARED_DATA_DIR "\n";
+}
+
+static bool parse_count(const char* s, long long min, long long& value)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(s, &end, 10);
+  if(errno != 0 || end == s || *end != '\0' || v < min) return false;
+  value = v;
+  return true;
+}
+
+int main(int argc, char** argv)
+{
+  std::string dir = HMO_SHARED_DATA_DIR, only;
+  bool untangle_only = false, threads_compare = false, scaling_mode = false;
+  long long threads = 0, max_hexes = 0;
+  for(int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if(a == "--only" && has_value) only = argv[++i];
+    else if(a == "--untangle") untangle_only = true;
+    else if(a == "--threads-compare") threads_compare = true;
+    else if(a == "--threads" && has_value)
+    {
+      if(!parse_count(argv[++i], 1, threads))
+      {
+        std::cerr << "benchmark_hex_mesh_optimization: --threads needs a positive integer\n";
+        return 2;
+      }
+    }
+    else if(a == "--scaling") scaling_mode = true;
+    else if(a == "--scaling-max-hexes" && has_value)
+    {
+      if(!parse_count(argv[++i], 1, max_hexes))
+      {
+        std::cerr << "benchmark_hex_mesh_optimization: --scaling-max-hexes needs a positive integer\n";
+        return 2;
+      }
+    }
+    else if(a == "-h" || a == "--help")
+    {
+      usage(std::cout);
+      return 0;
+    }
+    else if(!a.empty() && a[0] == '-')
+    {
+      std::cerr << "benchmark_hex_mesh_optimization: unknown option or missing value: " << a << "\n";
+      usage(std::cerr);
+      return 2;
+    }
+    else dir = a;
+  }
+  if(threads_compare && threads > 0)
+  {
+    std::cerr << "benchmark_hex_mesh_optimization: --threads and --threads-compare exclude each other\n";
+    return 2;
+  }
+#ifndef CGAL_LINKED_WITH_TBB
+  if(threads_compare || threads > 0)
+  {
+    std::cerr << "benchmark_hex_mesh_optimization: built without TBB: --threads and --threads-compare are unavailable\n";
+    return 2;
+  }
+#endif
+  std::vector<int> thread_runs;
+  if(threads_compare) thread_runs = {1, 2};
+  else thread_runs = {int(threads)};
+
+  struct stat st;
+  const bool have_data = ::stat((dir + "/README.md").c_str(), &st) == 0;
+  if(scaling_mode)
+    return scaling(dir, have_data, untangle_only, only, std::size_t(max_hexes), thread_runs);
+  if(!have_data)
+  {
+    std::cout << "shared data folder " << dir << " is absent: nothing to benchmark" << std::endl;
+    return 0;
+  }
+  return benchmark_rows(dir, untangle_only, only, thread_runs);
 }
