@@ -371,24 +371,26 @@ private:
   void final_asj_smoothing(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
-    if(st.current_error < 0.) measure_error(st);
-    st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
-    const std::vector<Vec3> saved = st.mesh.points;
-    const double saved_error = st.current_error;
-    Asj_smoothing_settings first;
-    first.max_passes = sc.asj_passes;
-    first.min_asj_gain = sc.asj_min_gain;
-    first.start_deviation_budget = error_budget(st, m_turn_guard);
-    asj_stage(st, m_turn_guard * st.tolerance, first);
-    if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
-    Asj_smoothing_settings fixed_boundary = first;
-    fixed_boundary.move_boundary = false;
-    fixed_boundary.start_deviation_budget = 0.;
-    asj_stage(st, m_turn_guard * st.tolerance, fixed_boundary);
-    st.current_error = saved_error; // the boundary did not move
+    Asj_smoothing_settings settings;
+    settings.max_passes = sc.asj_passes;
+    settings.min_asj_gain = sc.asj_min_gain;
+    if(sc.final_asj_moves_boundary)
+    {
+      if(st.current_error < 0.) measure_error(st);
+      st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
+      const std::vector<Vec3> saved = st.mesh.points;
+      const double saved_error = st.current_error;
+      settings.start_deviation_budget = error_budget(st, m_turn_guard);
+      asj_stage(st, m_turn_guard * st.tolerance, settings);
+      if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
+    }
+    const double error = st.current_error;
+    settings.move_boundary = false;
+    settings.start_deviation_budget = 0.;
+    asj_stage(st, m_turn_guard * st.tolerance, settings);
+    st.current_error = error; // the boundary did not move
   }
 
-private:
   /// a "check" stage: `what` was undone, and why
   void report_check(Run_state& st, const std::string& what, const std::string& why)
   {
@@ -419,7 +421,8 @@ private:
     as.time_limit = m_s.time_limit;
     const Asj_smoothing_report ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
     std::ostringstream d;
-    d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << ", MSJ kept at " << ar.msj_after;
+    d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << " in " << ar.passes << " passes, MSJ kept at "
+      << ar.msj_after;
     report_stage(st, "asj", q, t, ar.passes, d.str());
   }
 
