@@ -29,6 +29,7 @@ struct Hexmesh_optimize_options
   bool quiet = false;        ///< --quiet: no report on standard output
   // optimisation (with OUTPUT): the whole pipeline unless --untangle
   bool untangle_only = false;     ///< --untangle: only remove the inverted elements
+  bool paper_method = false;      ///< --method paper: the method of Xu & Chen alone
   std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
@@ -90,6 +91,14 @@ inline const std::vector<Option_spec>& option_table()
      "only untangle (barrier with the boundary fixed, edge-angle optimiser, then the barrier stage on what is left); "
      "default: the whole pipeline (untangle, pull-back, MSJ stages, ASJ smoothing)",
      [](O& o, const std::string&, std::string&) { o.untangle_only = true; return true; }},
+    {"--method", "NAME",
+     "'package' (default): the package's pipeline; 'paper': the method of Xu & Chen (2018) alone, as published "
+     "(edge-angle untangling, SLIM pull-back, edge-angle MSJ stages, ASJ smoothing)",
+     [](O& o, const std::string& v, std::string& e) {
+       if(v != "package" && v != "paper") { e = "option --method: '" + v + "' is neither 'package' nor 'paper'"; return false; }
+       o.paper_method = v == "paper";
+       return true;
+     }},
     {"--target-msj", "X",
      "stop raising the minimum scaled Jacobian at X (default 1: as high as it gets)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--target-msj", v, 0., 1., o.target_msj, e); }},

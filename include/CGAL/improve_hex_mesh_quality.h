@@ -24,7 +24,12 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.surface_tolerance = choose_parameter(get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005);
   s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
   s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
-  s.edge_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::edge_angle_stages), true);
+  s.schedule = u.schedule; // the method's schedule (`read_untangle_parameters()`)
+  const bool paper = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package) == Method::paper;
+  if(choose_parameter(get_parameter(np, hex_mesh_internal_np::edge_angle_stages), paper))
+    s.schedule.msj_stage_edge_angle_passes = Optimization_schedule::paper_msj_stage_edge_angle_passes;
+  else
+    s.schedule.msj_stage_edge_angle_passes = 0;
   s.sharp_angle = u.sharp_angle;
   s.xi = u.xi;
   s.local_iterations = u.local_iterations;
@@ -150,10 +155,15 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamType{`double`}
     \cgalParamDefault{1000}
   \cgalParamNEnd
+  \cgalParamNBegin{method}
+    \cgalParamDescription{`Hexahedral_mesh_optimization::Method::package`: the package's pipeline; `Method::paper`: the method of Xu & Chen alone (edge-angle untangling with relaxation, SLIM pull-back, MSJ stages by the edge-angle optimiser, ASJ smoothing), for reproducing the paper}
+    \cgalParamType{`Hexahedral_mesh_optimization::Method`}
+    \cgalParamDefault{`Method::package`}
+  \cgalParamNEnd
   \cgalParamNBegin{edge_angle_stages}
-    \cgalParamDescription{whether each MSJ stage starts with the edge-angle optimiser}
+    \cgalParamDescription{whether each MSJ stage runs the edge-angle optimiser (up to 8 passes while they raise the MSJ by 0.005) where the max-min smoothing falls short}
     \cgalParamType{`bool`}
-    \cgalParamDefault{`true`}
+    \cgalParamDefault{`false`, `true` with `Method::paper`}
   \cgalParamNEnd
   \cgalParamNBegin{pull_back}
     \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance (its result is kept only if it lowers the surface error)}

@@ -74,6 +74,8 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
   s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
   s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
   s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
+  const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
+  s.schedule = method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule();
   face_graph_to_soup(
     choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), No_reference_surface()),
     gt, ref_points, ref_tris);
@@ -167,6 +169,11 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDescription{whether the barrier stages run: with the boundary fixed before the edge-angle stage, and on what the edge-angle stage leaves}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{method}
+    \cgalParamDescription{`Hexahedral_mesh_optimization::Method::package`: the stages above; `Method::paper`: the edge-angle stage alone, as in the paper (no barrier stages, no hand-over)}
+    \cgalParamType{`Hexahedral_mesh_optimization::Method`}
+    \cgalParamDefault{`Method::package`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
     \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence.}

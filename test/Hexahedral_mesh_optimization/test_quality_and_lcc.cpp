@@ -14,6 +14,7 @@
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/hex_mesh_quality.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -488,11 +490,99 @@ void test_shared_meshes()
   }
 }
 
+/// The one hex-frame kernel (internal/scaled_jacobian.h) every energy uses:
+/// frames from their coefficients, samples, and their analytic gradients
+/// against central differences.
+void test_frame_kernel()
+{
+  namespace HI = CGAL::Hexahedral_mesh_optimization::internal;
+  using namespace CGAL::Hexahedral_mesh_optimization::internal; // Vec3's operators
+  typedef HI::Vec3 Vec3;
+  auto sample = [](const std::array<Vec3, 8>& p, int s) {
+    return s < 8 ? HI::corner_scaled_jacobian(p, s) : HI::centre_scaled_jacobian(p);
+  };
+  std::array<Vec3, 8> cube;
+  const Hex_points b = box(1, 1, 1);
+  for(int i = 0; i < 8; ++i) cube[i] = Vec3{b[i].x(), b[i].y(), b[i].z()};
+
+  // the unit cube: every sample is 1, and each is at its maximum (zero gradient)
+  double s9[9];
+  HI::hex_samples(cube, s9);
+  for(int s = 0; s < 9; ++s)
+  {
+    HMO_CHECK_CLOSE(s9[s], 1., 1e-15);
+    for(int c = 0; c < 8; ++c) HMO_CHECK(HI::squared_norm(HI::hex_sample_gradient(cube, s, c, s9[s])) < 1e-24);
+  }
+
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  int compared = 0;
+  for(int trial = 0; trial < 20; ++trial)
+  {
+    std::array<Vec3, 8> p = cube;
+    for(Vec3& x : p) x = x + Vec3{u(rng), u(rng), u(rng)};
+    for(int s = 0; s < 9; ++s)
+    {
+      // frame s from the coefficients: the corner edges, or the principal axes / 4
+      for(int k = 0; k < 3; ++k)
+      {
+        Vec3 column{0., 0., 0.};
+        for(int i = 0; i < 8; ++i) column = column + HI::hex_frame_coefficient(s, i, k) * p[i];
+        Vec3 expected;
+        if(s < 8) expected = p[HI::hex_corner_edges[s][k]] - p[s];
+        else
+        {
+          Vec3 axes[3];
+          HI::principal_axes(p, axes[0], axes[1], axes[2]);
+          expected = 0.25 * axes[k];
+        }
+        HMO_CHECK(HI::norm(column - expected) < 1e-14);
+      }
+      // the analytic gradient against central differences, every corner
+      const double f = sample(p, s);
+      for(int c = 0; c < 8; ++c)
+      {
+        const Vec3 g = HI::hex_sample_gradient(p, s, c, f);
+        const bool depends = s == 8 || s == c || HI::hex_corner_edges[s][0] == c ||
+                             HI::hex_corner_edges[s][1] == c || HI::hex_corner_edges[s][2] == c;
+        Vec3 fd{0., 0., 0.};
+        const double h = 1e-6;
+        for(int d = 0; d < 3; ++d)
+        {
+          std::array<Vec3, 8> q = p, r = p;
+          q[c][d] += h;
+          r[c][d] -= h;
+          fd[d] = (sample(q, s) - sample(r, s)) / (2. * h);
+        }
+        HMO_CHECK(HI::norm(g - fd) < 1e-7 * (1. + HI::norm(fd)));
+        if(!depends) HMO_CHECK(HI::squared_norm(g) == 0.);
+        ++compared;
+      }
+    }
+    // the corner samples of corner c are the ones whose gradient at c can be non-zero
+    for(int c = 0; c < 8; ++c)
+      for(int s = 0; s < 8; ++s)
+      {
+        const int* dep = HI::corner_samples_of_corner(c);
+        const bool listed = std::find(dep, dep + 4, s) != dep + 4;
+        if(!listed) HMO_CHECK(HI::squared_norm(HI::hex_sample_gradient(p, s, c, sample(p, s))) == 0.);
+      }
+  }
+  HMO_CHECK(compared == 20 * 9 * 8);
+
+  // a known sheared hex: x += 0.5 z gives 1/sqrt(1.25) at every sample
+  std::array<Vec3, 8> sheared = cube;
+  for(Vec3& x : sheared) x[0] += 0.5 * x[2];
+  HI::hex_samples(sheared, s9);
+  for(int s = 0; s < 9; ++s) HMO_CHECK_CLOSE(s9[s], 1. / std::sqrt(1.25), 1e-14);
+}
+
 } // namespace
 
 int main()
 {
   test_scaled_jacobian();
+  test_frame_kernel();
   test_quality_statistics();
   test_linear_cell_complex();
   test_shared_meshes();

@@ -35,8 +35,10 @@ The result of `untangle_hex_mesh()`: never a bare bool.
 `success` is true when the mesh has no inverted element at the end (and,
 for the quality functions, its MSJ reached the target). Whatever the
 outcome, the mesh returned has no more inverted elements than the input and,
-at equal counts, an MSJ no lower: when the optimisation could not do better,
-the input positions are kept (`kept_input` is then true).
+at equal counts, an MSJ no lower (up to 1e-12, the rounding of the
+coordinates when the internal normalisation is undone): when the
+optimisation could not do better, the input positions are kept (`kept_input`
+is then true).
 
 The stages end on their own criteria (convergence, work caps counted in
 sweeps or iterations), never on the clock, so that the same input and

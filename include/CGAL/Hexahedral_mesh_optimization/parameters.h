@@ -22,6 +22,21 @@
 #include <CGAL/Named_function_parameters.h>
 
 namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+
+/// The optimisation method (named parameter `method`).
+enum class Method
+{
+  /// the package's pipeline: the paper's method with the stages that measure
+  /// better (barrier untangling, surface restoration, max-min smoothing and
+  /// the ASJ/max-min turns); see the user manual
+  package,
+  /// the method of Xu & Chen (2018) alone, as published
+  paper
+};
+
+} // namespace Hexahedral_mesh_optimization
+
 namespace hex_mesh_internal_np {
 
 enum reference_surface_t { reference_surface };
@@ -38,6 +53,7 @@ enum surface_tolerance_t { surface_tolerance };
 enum pull_back_t { pull_back };
 enum asj_smoothing_t { asj_smoothing };
 enum edge_angle_stages_t { edge_angle_stages };
+enum method_t { method };
 enum volume_tolerance_t { volume_tolerance };
 enum outside_tolerance_t { outside_tolerance };
 
@@ -79,7 +95,7 @@ CGAL_HMO_ADD_PARAMETER(relax_surface)
 CGAL_HMO_ADD_PARAMETER(local_iterations)
 /// whether the barrier stages run, with the boundary fixed before the edge-angle stage and on what it left (default true)
 CGAL_HMO_ADD_PARAMETER(barrier_fallback)
-/// wall-clock budget in seconds of the edge-angle stage (default 60)
+/// hard stop in seconds of wall-clock time (default: none); decides nothing else
 CGAL_HMO_ADD_PARAMETER(time_limit)
 /// the MSJ the quality stages aim at; 1 (default): as high as they get it
 CGAL_HMO_ADD_PARAMETER(target_msj)
@@ -90,8 +106,11 @@ CGAL_HMO_ADD_PARAMETER(surface_tolerance)
 CGAL_HMO_ADD_PARAMETER(pull_back)
 /// whether the final ASJ smoothing runs (default true)
 CGAL_HMO_ADD_PARAMETER(asj_smoothing)
-/// whether each MSJ stage starts with the paper's edge-angle optimiser (default true)
+/// whether each MSJ stage runs the paper's edge-angle optimiser where the
+/// max-min smoothing falls short (default: false, true with `Method::paper`)
 CGAL_HMO_ADD_PARAMETER(edge_angle_stages)
+/// `Hexahedral_mesh_optimization::Method::package` (default) or `Method::paper`
+CGAL_HMO_ADD_PARAMETER(method)
 /// largest relative difference between the volume of the hex mesh and the
 /// volume bounded by the reference that `check_hex_mesh_against_reference()`
 /// accepts (default 0.01)

@@ -187,44 +187,13 @@ struct Asj_smoothing_report
 
 namespace asj_detail {
 
-/// the corners whose Verdict sample depends on corner c: c and its 3 neighbours
-inline const int* samples_of_corner(int c)
-{
-  static const int s[8][4] = {
-    {0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
-    {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
-  return s[c];
-}
-
-inline void principal_axes(const std::array<Vec3, 8>& p, Vec3& x1, Vec3& x2, Vec3& x3)
-{
-  x1 = (p[1] + p[2]) + (p[5] + p[6]) - ((p[0] + p[3]) + (p[4] + p[7]));
-  x2 = (p[2] + p[3]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[4] + p[5]));
-  x3 = (p[4] + p[5]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[2] + p[3]));
-}
-
-/// sign of corner c's coordinate along principal axis k (the unit cube at ±1)
-inline double axis_sign(int c, int k)
-{
-  switch(k)
-  {
-  case 0: return (c == 1 || c == 2 || c == 5 || c == 6) ? 1. : -1.;
-  case 1: return (c == 2 || c == 3 || c == 6 || c == 7) ? 1. : -1.;
-  default: return c >= 4 ? 1. : -1.;
-  }
-}
-
 /// the 9 Verdict samples of a hex (8 corners, then the centre)
-inline void all_samples(const std::array<Vec3, 8>& p, double s[9])
-{
-  for(int i = 0; i < 8; ++i) s[i] = corner_scaled_jacobian(p, i);
-  s[8] = centre_scaled_jacobian(p);
-}
+inline void all_samples(const std::array<Vec3, 8>& p, double s[9]) { hex_samples(p, s); }
 
 /// recomputes in `s` the 5 samples that depend on corner c
 inline void update_samples(const std::array<Vec3, 8>& p, int c, double s[9])
 {
-  const int* k = samples_of_corner(c);
+  const int* k = corner_samples_of_corner(c);
   for(int j = 0; j < 4; ++j) s[k[j]] = corner_scaled_jacobian(p, k[j]);
   s[8] = centre_scaled_jacobian(p);
 }
@@ -266,23 +235,6 @@ inline double soft_minimum(const double s[9], double k)
   return m - std::log(sum) / k;
 }
 
-/// gradient of det[a b c] / (|a||b||c|) with respect to a, b and c
-inline void normalized_triple_product_gradient(const Vec3& a, const Vec3& b, const Vec3& c, double f,
-                                               Vec3& ga, Vec3& gb, Vec3& gc)
-{
-  const double la = squared_norm(a), lb = squared_norm(b), lc = squared_norm(c);
-  const double l = std::sqrt(la * lb * lc);
-  if(!(l > std::numeric_limits<double>::min()))
-  {
-    ga = gb = gc = Vec3{0., 0., 0.};
-    return;
-  }
-  const double il = 1. / l;
-  ga = il * cross(b, c) - (f / la) * a;
-  gb = il * cross(c, a) - (f / lb) * b;
-  gc = il * cross(a, b) - (f / lc) * c;
-}
-
 /// Gradient, with respect to corner c, of the soft minimum (sharpness k) of
 /// the hex's 9 samples `s` (already computed for the corners `p`).
 inline Vec3 soft_minimum_gradient(const std::array<Vec3, 8>& p, int c, const double s[9], double k)
@@ -291,31 +243,13 @@ inline Vec3 soft_minimum_gradient(const std::array<Vec3, 8>& p, int c, const dou
   double wsum = 0.;
   for(int i = 0; i < 9; ++i) wsum += exp_minus(k * (s[i] - m));
   Vec3 r{0., 0., 0.};
-  Vec3 ga, gb, gc;
-  const int* dep = samples_of_corner(c);
-  for(int j = 0; j < 4; ++j)
+  const int* dep = corner_samples_of_corner(c);
+  for(int j = 0; j < 5; ++j)
   {
-    const int i = dep[j];
+    const int i = j < 4 ? dep[j] : 8;
     const double d = k * (s[i] - m);
     if(d >= 40.) continue;
-    const double w = exp_minus(d) / wsum;
-    const int* n = hex_corner_edges[i];
-    normalized_triple_product_gradient(p[n[0]] - p[i], p[n[1]] - p[i], p[n[2]] - p[i], s[i], ga, gb, gc);
-    Vec3 g;
-    if(i == c) g = -1. * (ga + gb + gc);
-    else if(n[0] == c) g = ga;
-    else if(n[1] == c) g = gb;
-    else g = gc;
-    r = r + w * g;
-  }
-  const double d = k * (s[8] - m);
-  if(d < 40.)
-  {
-    Vec3 x1, x2, x3;
-    principal_axes(p, x1, x2, x3);
-    normalized_triple_product_gradient(x1, x2, x3, s[8], ga, gb, gc);
-    const double w = exp_minus(d) / wsum;
-    r = r + w * (axis_sign(c, 0) * ga + axis_sign(c, 1) * gb + axis_sign(c, 2) * gc);
+    r = r + (exp_minus(d) / wsum) * hex_sample_gradient(p, i, c, s[i]);
   }
   return r;
 }
@@ -350,8 +284,8 @@ inline Vec3 cuboid_corner(const std::array<Vec3, 8>& p, int c)
     r[0] = n0; r[1] = n1; r[2] = n2;
     if(change < 1e-16) break;
   }
-  return centre + (axis_sign(c, 0) * len[0]) * r[0] + (axis_sign(c, 1) * len[1]) * r[1]
-                + (axis_sign(c, 2) * len[2]) * r[2];
+  return centre + (hex_axis_sign(c, 0) * len[0]) * r[0] + (hex_axis_sign(c, 1) * len[1]) * r[1]
+                + (hex_axis_sign(c, 2) * len[2]) * r[2];
 }
 
 /// closest point to p on segment [a, b]

@@ -38,6 +38,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_region.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <Eigen/Dense>
 
@@ -101,11 +102,6 @@ public:
   }
 
 private:
-  // corner c's three edge neighbours (hex_corner_edges) and the principal
-  // axes (centre frame) of the Verdict definition
-  static constexpr int plus_[3][4] = {{1, 2, 5, 6}, {2, 3, 6, 7}, {4, 5, 6, 7}};
-  static constexpr int minus_[3][4] = {{0, 3, 4, 7}, {0, 1, 4, 5}, {0, 1, 2, 3}};
-
   void setup(const std::vector<Vec3>& points, Eigen::VectorXd& x)
   {
     const auto& hexes = m_topo.hexes();
@@ -156,7 +152,8 @@ private:
     }
   }
 
-  // the 9 frames of a hex: J[s] columns k
+  // the 9 frames of a hex: J[s] columns k (the kernel's frames,
+  // `hex_frame_coefficient`, on raw coordinates)
   static void frames(const double p[8][3], double J[9][3][3])
   {
     for(int c = 0; c < 8; ++c)
@@ -169,7 +166,7 @@ private:
       for(int d = 0; d < 3; ++d)
       {
         double s = 0.;
-        for(int i = 0; i < 4; ++i) s += p[plus_[k][i]][d] - p[minus_[k][i]][d];
+        for(int i = 0; i < 4; ++i) s += p[hex_axis_plus[k][i]][d] - p[hex_axis_minus[k][i]][d];
         J[8][d][k] = 0.25 * s;
       }
   }
@@ -253,8 +250,8 @@ private:
             for(int i = 0; i < 4; ++i)
               for(int d = 0; d < 3; ++d)
               {
-                gp[plus_[k][i]][d] += 0.25 * g[d][k];
-                gp[minus_[k][i]][d] -= 0.25 * g[d][k];
+                gp[hex_axis_plus[k][i]][d] += 0.25 * g[d][k];
+                gp[hex_axis_minus[k][i]][d] -= 0.25 * g[d][k];
               }
         }
       }

@@ -77,8 +77,6 @@ struct Quality_settings
   double min_alpha_beta = 500.;
   double xi = 0.6;
   int local_iterations = 20;
-  /// run the paper's edge-angle optimiser in each MSJ stage (before the max-min smoothing)
-  bool edge_angle = true;
   bool pull_back = true;
   bool asj_smoothing = true;
   /// largest surface error allowed to the boundary moves of the quality
@@ -152,7 +150,7 @@ public:
 
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
-    res.success = q1.inverted == 0 && q1.msj >= (std::min)(m_s.target_msj, 1.) - 1e-12;
+    res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
     res.surface_error = (st.current_error >= 0. && !res.kept_input) ? st.current_error
                                                                     : relative_surface_error(mesh, st.reference);
     res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
@@ -162,6 +160,10 @@ public:
 
 private:
   bool stopped() const { return time_limit_reached(m_s.time_limit); }
+
+  /// the MSJ the stages aim at: the target, but never above
+  /// `Optimization_schedule::excellent_msj`
+  double aimed_msj() const { return (std::min)(m_s.target_msj, m_s.schedule.excellent_msj); }
 
   /// the reference surface, the normalisation, Ω_t and the ideal angles
   void set_up(Run_state& st, const Hex_mesh_arrays& original)
@@ -334,6 +336,7 @@ private:
       const std::vector<Vec3> saved = st.mesh.points;
       const double saved_error = st.current_error;
       const double before = quality_statistics(st.mesh).msj;
+      if(before >= aimed_msj()) break;
       Asj_smoothing_settings one_focused_pass;
       one_focused_pass.max_passes = 1;
       one_focused_pass.focus_below = before + sc.turn_focus_band;
@@ -452,7 +455,7 @@ private:
     m_visitor.stage_started("max-min", count_below(st.mesh, q.msj + 0.05));
     Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
     const Worst_element_smoothing_report wr =
-      polish.run(st.mesh.points, max_min_settings((std::min)(m_s.target_msj, 1.), guard_tolerance));
+      polish.run(st.mesh.points, max_min_settings(aimed_msj(), guard_tolerance));
     std::ostringstream d;
     d << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << wr.msj_before << " -> " << wr.msj_after;
     report_stage(st, "max-min", q, t, wr.sweeps, d.str());
@@ -478,6 +481,7 @@ private:
   /// the surface restoration; returns the number of boundary moves it made
   std::size_t restoration_stage(Run_state& st)
   {
+    if(!m_s.schedule.restoration) return 0;
     const auto t = Clock::now();
     m_visitor.stage_started("surface restoration", 0);
     Boundary_restoration_settings bs;
@@ -563,7 +567,7 @@ private:
   void msj_stages(Run_state& st, double guard_tolerance)
   {
     const Optimization_schedule& sc = m_s.schedule;
-    const double target = (std::min)(m_s.target_msj, 1.);
+    const double target = aimed_msj();
     double msj = quality_statistics(st.mesh).msj;
     for(int k = 0; !stopped(); ++k)
     {
@@ -581,6 +585,11 @@ private:
       Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
       const Worst_element_smoothing_settings ws = max_min_settings(t, guard_tolerance);
       auto smooth = [&] {
+        if(!sc.msj_stage_max_min)
+        {
+          msj = quality_statistics(st.mesh).msj;
+          return;
+        }
         const Worst_element_smoothing_report wr = polish.run(st.mesh.points, ws);
         const double now = quality_statistics(st.mesh).msj;
         d << "max-min smoothing: " << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << msj << " -> " << now;
@@ -590,7 +599,7 @@ private:
       // (even for a handful of elements: on fertility_gregson11 a pass on
       // the last element below 0.7 did not fix it, but the max-min smoothing
       // after it went from 0.691 to 0.697)
-      for(int pass = 0; m_s.edge_angle && msj < t && pass < sc.msj_stage_edge_angle_passes && !stopped(); ++pass)
+      for(int pass = 0; msj < t && pass < sc.msj_stage_edge_angle_passes && !stopped(); ++pass)
       {
         const double msj_pass = msj;
         const Local_optimizer_report r = edge_angle_pass(st, t, msj, guard_tolerance, sr.name);
@@ -599,7 +608,10 @@ private:
         d << "; edge-angle: below " << t << " " << r.bad_before << " -> " << r.bad_after << " in " << r.rounds
           << " rounds, " << projected << " boundary vertices projected back; ";
         smooth();
-        if(msj - msj_pass < sc.msj_stage_min_gain) break;
+        // on while the pass raises the MSJ or frees elements (Algorithm 1
+        // clears the elements below t one region at a time: the MSJ rises
+        // only when the last is freed)
+        if(msj - msj_pass < sc.msj_stage_min_gain && r.bad_after >= r.bad_before) break;
       }
       sr.inverted_after = quality_statistics(st.mesh).inverted;
       sr.msj_after = msj;

@@ -207,13 +207,14 @@ public:
     else
       ts.reset(new Target_surface(mesh, tsp));
 
-    if(m_s.barrier_fallback && q0.inverted > 0 && !stopped())
+    const Optimization_schedule& sc = m_s.schedule;
+    if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
       interior_stage(topo, ts->boundary(), mesh, res);
     if(!stopped())
       edge_angle_stage(topo, *ts, mesh, res);
-    if(m_s.barrier_fallback && count_inverted(mesh) > 0 && !stopped())
+    if(m_s.barrier_fallback && sc.barrier_stage && count_inverted(mesh) > 0 && !stopped())
       barrier_stage(topo, *ts, mesh, res);
-    if(!stopped())
+    if(sc.surface_stage && !stopped())
       surface_stage(topo, *ts, mesh, res);
 
     for(Vec3& p : mesh.points) p = nz.undo(p);

@@ -19,6 +19,7 @@
 // manual's implementation notes (doc/Hexahedral_mesh_optimization).
 
 #include <cstddef>
+#include <limits>
 
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
@@ -26,6 +27,19 @@ namespace internal {
 
 struct Optimization_schedule
 {
+  // ---- which stages run (the paper's method runs fewer, see `paper()`)
+
+  /// untangling: the barrier with the boundary fixed before the edge-angle
+  /// stage, the barrier on what that leaves, and the barrier pull-back of
+  /// the boundary ("surface")
+  bool interior_stage = true;
+  bool barrier_stage = true;
+  bool surface_stage = true;
+  /// quality: the surface restoration before and after the MSJ stages
+  bool restoration = true;
+  /// quality: the max-min smoothing in each MSJ stage
+  bool msj_stage_max_min = true;
+
   // ---- untangling (Hex_mesh_untangler.h)
 
   /// rings of hexes around the inverted ones in the regions of the stage
@@ -52,13 +66,22 @@ struct Optimization_schedule
 
   // ---- quality (Hex_mesh_quality_improver.h)
 
+  /// The MSJ stages, the turns and `success` aim at min(target_msj, this):
+  /// a mesh whose every element is above it is as good as a hex mesh gets,
+  /// and aiming at 1 itself would make every element of a nearly regular
+  /// mesh "below the target" (a 125k-hex grid with 362 hexes inverted,
+  /// MSJ 0.9995 once untangled: the stage "msj>=1" visited all 125k for
+  /// 39 s). The cost then grows with the mesh, not with its bad elements.
+  double excellent_msj = 0.999;
+
   /// SLIM iterations of the pull-back
   int pull_back_iterations = 40;
   /// sweeps of the surface restoration
   int restoration_sweeps = 8;
   /// the MSJ stages: targets 0, `msj_stage_step`, 2 × that, … ; in each,
   /// after the max-min smoothing, the edge-angle passes (Algorithm 1) go on
-  /// while one raises the MSJ by at least `msj_stage_min_gain`, at most
+  /// while one raises the MSJ by at least `msj_stage_min_gain` or frees an
+  /// element below the stage's target, at most
   /// `msj_stage_edge_angle_passes` times, each of at most `msj_stage_rounds`
   /// rounds. Default 0: the turns below raise the MSJ faster (the 8 published
   /// rows: as high or higher in less time, see the manual); the paper's
@@ -66,6 +89,8 @@ struct Optimization_schedule
   double msj_stage_step = 0.1;
   double msj_stage_min_gain = 0.005;
   int msj_stage_edge_angle_passes = 0;
+  /// the passes of the paper's schedule, and of `edge_angle_stages(true)`
+  static constexpr int paper_msj_stage_edge_angle_passes = 8;
   int msj_stage_rounds = 3;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance,
   /// and the one of their second run when the first ends above the
@@ -104,6 +129,24 @@ struct Optimization_schedule
   /// fixed. Default: the boundary fixed only (no guard query, no surface
   /// check; 2-3x faster, ASJ within 0.01 of the guarded run, see the manual)
   bool final_asj_moves_boundary = false;
+
+  /// The method of Xu & Chen (2018) alone: edge-angle untangling with
+  /// relaxation (Algorithm 1, no hand-over to the barrier), the SLIM
+  /// pull-back, MSJ stages by the edge-angle optimiser with the boundary
+  /// projected back, and the final ASJ smoothing; none of the package's
+  /// additions (barrier stages, restoration, max-min smoothing, turns).
+  static Optimization_schedule paper()
+  {
+    Optimization_schedule s;
+    s.interior_stage = s.barrier_stage = s.surface_stage = false;
+    s.restoration = false;
+    s.msj_stage_max_min = false;
+    s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
+    s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();
+    s.msj_stage_edge_angle_passes = paper_msj_stage_edge_angle_passes;
+    s.max_turns = 0;
+    return s;
+  }
 };
 
 } // namespace internal

@@ -68,12 +68,20 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
 
 /// If `mesh` is worse than `input` (quality `before`), puts the input back
 /// and sets `res.kept_input`; fills the "after" figures of `res` either way
-/// and returns the quality of what is returned.
+/// and returns the quality of what is returned. "Worse": more inverted
+/// elements, or as many and an MSJ lower by more than
+/// `msj_rounding_tolerance`: undoing the normalisation rounds the
+/// coordinates, which alone can move a stuck minimum by an ulp, and must not
+/// throw away what the stages gained elsewhere (rockerarm_li12 with the
+/// paper's method: MSJ 0.209 → 0.209, ASJ 0.866 → 0.93, and the input was
+/// returned).
 inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
                                               const Quality_statistics& before, Optimization_result& res)
 {
   Quality_statistics after = quality_statistics(mesh);
-  if(after.inverted > before.inverted || (after.inverted == before.inverted && after.msj < before.msj))
+  constexpr double msj_rounding_tolerance = 1e-12;
+  if(after.inverted > before.inverted ||
+     (after.inverted == before.inverted && after.msj < before.msj - msj_rounding_tolerance))
   {
     mesh = input;
     after = before;

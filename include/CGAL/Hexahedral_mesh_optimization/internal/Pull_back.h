@@ -348,20 +348,13 @@ public:
 
 private:
   // ---------------------------------------------------------------- samples
-  // sample s < 8: corner frame (columns p[n_k] − p[s]); s = 8: principal axes / 4
-  static double sample_weight(int s, int i, int k)
-  {
-    if(s < 8) return (hex_corner_edges[s][k] == i) ? 1. : (i == s ? -1. : 0.);
-    static const int plus[3][4] = {{1, 2, 5, 6}, {2, 3, 6, 7}, {4, 5, 6, 7}};
-    for(int j = 0; j < 4; ++j) if(plus[k][j] == i) return 0.25;
-    return -0.25;
-  }
+  // sample s < 8: corner frame (columns p[n_k] − p[s]); s = 8: principal axes / 4 (scaled_jacobian.h)
   struct Sample_table
   {
     double g[9][8][3];
     Sample_table()
     {
-      for(int s = 0; s < 9; ++s) for(int i = 0; i < 8; ++i) for(int k = 0; k < 3; ++k) g[s][i][k] = sample_weight(s, i, k);
+      for(int s = 0; s < 9; ++s) for(int i = 0; i < 8; ++i) for(int k = 0; k < 3; ++k) g[s][i][k] = hex_frame_coefficient(s, i, k);
     }
   };
   static const Sample_table& table() { static const Sample_table t; return t; }

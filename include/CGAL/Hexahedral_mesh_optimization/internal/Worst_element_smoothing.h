@@ -17,7 +17,8 @@
 // the minimum of the scaled Jacobian samples (8 corners + centre) of the hexes
 // around it, in the style of Freitag & Knupp's optimisation-based max-min
 // smoothing:
-//   - ascent direction: the gradient (central differences) of a soft minimum
+//   - ascent direction: the gradient (analytic, the kernel's sample
+//     gradients in scaled_jacobian.h) of a soft minimum
 //     of the vertex's samples, s_min − (1/k) log Σ exp(−k (s − s_min)),
 //     k = 60: the plain minimum has no gradient where two samples tie, which
 //     is exactly where the optimum of a max-min problem sits;
@@ -188,30 +189,44 @@ private:
     return m;
   }
 
-  /// all samples of the hexes around v with v at x
-  void samples(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, std::vector<double>& out) const
+  /// The soft minimum (sharpness `softness`) of the samples of the hexes
+  /// `around`, and its gradient with respect to each of `verts` (analytic:
+  /// the kernel's sample gradients, weighted as the soft minimum weighs the
+  /// samples). `hard`: the exact minimum.
+  double soft_minimum_gradient(const std::vector<Vec3>& points, const std::vector<std::size_t>& around,
+                               const std::vector<std::size_t>& verts, std::vector<Vec3>& grad, double& hard) const
   {
-    out.clear();
-    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-    {
-      std::array<Vec3, 8> p = corners(points, c->hex);
-      p[c->local] = x;
-      for(int i = 0; i < 8; ++i) out.push_back(corner_scaled_jacobian(p, i));
-      out.push_back(centre_scaled_jacobian(p));
-    }
-  }
-
-  double soft_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, std::vector<double>& buf) const
-  {
-    samples(points, v, x, buf);
-    const double m = *std::min_element(buf.begin(), buf.end());
+    thread_local std::vector<double> s;
+    s.resize(9 * around.size());
+    for(std::size_t a = 0; a < around.size(); ++a) hex_samples(corners(points, around[a]), &s[9 * a]);
+    hard = s.empty() ? 1. : *std::min_element(s.begin(), s.end());
     double sum = 0.;
-    for(double s : buf) sum += std::exp(-softness * (s - m));
-    return m - std::log(sum) / softness;
+    for(double x : s) sum += std::exp(-softness * (x - hard));
+    grad.assign(verts.size(), Vec3{0., 0., 0.});
+    for(std::size_t a = 0; a < around.size(); ++a)
+    {
+      const Hex& hx = m_topo.hexes()[around[a]];
+      const std::array<Vec3, 8> p = corners(points, around[a]);
+      for(int c = 0; c < 8; ++c)
+      {
+        const std::size_t i = std::size_t(std::find(verts.begin(), verts.end(), hx[c]) - verts.begin());
+        if(i == verts.size()) continue;
+        const int* dep = corner_samples_of_corner(c);
+        for(int j = 0; j < 5; ++j)
+        {
+          const int k = j < 4 ? dep[j] : 8;
+          const double x = s[9 * a + k];
+          const double w = std::exp(-softness * (x - hard));
+          if(w == 0.) continue;
+          grad[i] = grad[i] + (w / sum) * hex_sample_gradient(p, k, c, x);
+        }
+      }
+    }
+    return hard - std::log(sum) / softness;
   }
 
   /// Joint move of the interior vertices of hex h: ascent on the soft minimum
-  /// of the samples of every hex around them (central differences in all
+  /// of the samples of every hex around them (analytic gradient in all
   /// their coordinates), accepted only if the minimum over those hexes rises.
   /// Single-vertex max-min stalls where several elements at the minimum
   /// share vertices and each move of one vertex lowers one of them
@@ -226,19 +241,10 @@ private:
       for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) around.push_back(c->hex);
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
-    std::vector<double> buf;
-    auto soft = [&](double& hard) {
-      buf.clear();
-      for(std::size_t k : around)
-      {
-        const std::array<Vec3, 8> p = corners(points, k);
-        for(int i = 0; i < 8; ++i) buf.push_back(corner_scaled_jacobian(p, i));
-        buf.push_back(centre_scaled_jacobian(p));
-      }
-      hard = *std::min_element(buf.begin(), buf.end());
-      double sum = 0.;
-      for(double x : buf) sum += std::exp(-softness * (x - hard));
-      return hard - std::log(sum) / softness;
+    auto hard_minimum = [&] {
+      double m = std::numeric_limits<double>::max();
+      for(std::size_t k : around) m = (std::min)(m, hex_sj(points, k));
+      return m;
     };
     double length = 0.;
     for(int k = 0; k < 12; ++k)
@@ -246,32 +252,18 @@ private:
     length /= 12.;
     if(!(length > 0.)) return 0;
     double f0 = 0.;
-    soft(f0);
-    const double step = 1e-4 * length;
-    std::vector<Vec3> g(verts.size()), x0(verts.size());
-    double gn = 0., dummy = 0.;
-    for(std::size_t i = 0; i < verts.size(); ++i)
-    {
-      x0[i] = points[verts[i]];
-      for(int d = 0; d < 3; ++d)
-      {
-        points[verts[i]][d] = x0[i][d] + step;
-        const double fp = soft(dummy);
-        points[verts[i]][d] = x0[i][d] - step;
-        const double fm = soft(dummy);
-        points[verts[i]][d] = x0[i][d];
-        g[i][d] = (fp - fm) / (2. * step);
-        gn += g[i][d] * g[i][d];
-      }
-    }
+    std::vector<Vec3> g;
+    soft_minimum_gradient(points, around, verts, g, f0);
+    double gn = 0.;
+    for(const Vec3& gi : g) gn += squared_norm(gi);
     gn = std::sqrt(gn);
     if(!(gn > 0.)) return 0;
+    std::vector<Vec3> x0(verts.size());
+    for(std::size_t i = 0; i < verts.size(); ++i) x0[i] = points[verts[i]];
     for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
     {
       for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i] + (t / gn) * g[i];
-      double hard = 0.;
-      soft(hard);
-      if(hard > f0 + 1e-9)
+      if(hard_minimum() > f0 + 1e-9)
       {
         for(std::size_t k : around) sj[k] = hex_sj(points, k);
         return 1;
@@ -295,10 +287,26 @@ private:
     length /= (std::max)(ne, 1);
     if(!(length > 0.)) return 0;
 
-    std::vector<double> buf;
+    // the hexes around v, for the soft minimum's gradient
+    std::vector<std::size_t> around;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) around.push_back(c->hex);
+    const std::vector<std::size_t> single(1, v);
+    std::vector<Vec3> gradient;
     std::size_t accepted = 0;
-    const Surface_deviation allowed =
-      guarded ? m_guard->local_deviations(points, v, points[v]).bound(m_max_deviation) : Surface_deviation();
+    // the guard's bound for this visit, measured where v starts, when a
+    // trial first raises the minimum (most visits of a stalled vertex
+    // raise nothing and need no closest-point query)
+    bool have_allowed = false;
+    Surface_deviation allowed;
+    const Vec3 start = points[v];
+    auto guard_allows = [&](const Vec3& x) {
+      if(!have_allowed)
+      {
+        allowed = m_guard->local_deviations(points, v, start).bound(m_max_deviation);
+        have_allowed = true;
+      }
+      return m_guard->local_deviations(points, v, x).within(allowed);
+    };
     double f0 = local_minimum(points, v, points[v]);
     // the kinds of move tried in turn, until one is accepted
     enum Move { along_class, on_reference, free_move };
@@ -310,14 +318,9 @@ private:
     for(int step = 0; step < steps; ++step)
     {
       const Vec3 x0 = points[v];
-      const double h = 1e-4 * length;
-      Vec3 g0;
-      for(int d = 0; d < 3; ++d)
-      {
-        Vec3 xp = x0, xm = x0;
-        xp[d] += h; xm[d] -= h;
-        g0[d] = (soft_minimum(points, v, xp, buf) - soft_minimum(points, v, xm, buf)) / (2. * h);
-      }
+      double hard = 0.;
+      soft_minimum_gradient(points, around, single, gradient, hard);
+      const Vec3 g0 = gradient[0];
       bool moved = false;
       for(std::size_t m = 0; m < moves.size() && !moved; ++m)
       {
@@ -344,7 +347,7 @@ private:
           if(moves[m] == along_class) x = m_target->constraint_at(v, x).anchor;
           else if(moves[m] == on_reference) m_target->closest_on_reference(Vec3(x), x);
           const double f = local_minimum(points, v, x);
-          if(f > f0 + 1e-9 && (!guarded || m_guard->local_deviations(points, v, x).within(allowed)))
+          if(f > f0 + 1e-9 && (!guarded || guard_allows(x)))
           {
             points[v] = x;
             f0 = f;

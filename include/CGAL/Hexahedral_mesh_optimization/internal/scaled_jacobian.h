@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 
 namespace CGAL {
@@ -85,13 +86,100 @@ inline double corner_scaled_jacobian(const std::array<Vec3, 8>& p, int i)
   return normalized_triple_product(p[n[0]] - p[i], p[n[1]] - p[i], p[n[2]] - p[i]);
 }
 
+/// Principal axis k of a hex is the sum of the corners `hex_axis_plus[k]`
+/// minus the sum of the corners `hex_axis_minus[k]` (the centre frame).
+constexpr int hex_axis_plus[3][4] = {{1, 2, 5, 6}, {2, 3, 6, 7}, {4, 5, 6, 7}};
+constexpr int hex_axis_minus[3][4] = {{0, 3, 4, 7}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+
+/// the three principal axes (differences of opposite face sums)
+inline void principal_axes(const std::array<Vec3, 8>& p, Vec3& x1, Vec3& x2, Vec3& x3)
+{
+  x1 = (p[1] + p[2]) + (p[5] + p[6]) - ((p[0] + p[3]) + (p[4] + p[7]));
+  x2 = (p[2] + p[3]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[4] + p[5]));
+  x3 = (p[4] + p[5]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[2] + p[3]));
+}
+
+/// ∂(principal axis k)/∂(corner c): +1 or −1 (the unit cube's corners at ±1)
+inline double hex_axis_sign(int c, int k)
+{
+  switch(k)
+  {
+  case 0: return (c == 1 || c == 2 || c == 5 || c == 6) ? 1. : -1.;
+  case 1: return (c == 2 || c == 3 || c == 6 || c == 7) ? 1. : -1.;
+  default: return c >= 4 ? 1. : -1.;
+  }
+}
+
 /// scaled Jacobian at the element centre (principal axes)
 inline double centre_scaled_jacobian(const std::array<Vec3, 8>& p)
 {
-  const Vec3 x1 = (p[1] + p[2]) + (p[5] + p[6]) - ((p[0] + p[3]) + (p[4] + p[7]));
-  const Vec3 x2 = (p[2] + p[3]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[4] + p[5]));
-  const Vec3 x3 = (p[4] + p[5]) + (p[6] + p[7]) - ((p[0] + p[1]) + (p[2] + p[3]));
+  Vec3 x1, x2, x3;
+  principal_axes(p, x1, x2, x3);
   return normalized_triple_product(x1, x2, x3);
+}
+
+/// The samples of a hex: s < 8 the corner frames, s = 8 the centre frame.
+/// Frame s, column k, is linear in the corners: Σ_i hex_frame_coefficient(s, i, k) p_i
+/// (the centre frame is the principal axes / 4, the scale of a corner frame).
+inline double hex_frame_coefficient(int s, int i, int k)
+{
+  if(s < 8) return (hex_corner_edges[s][k] == i) ? 1. : (i == s ? -1. : 0.);
+  return 0.25 * hex_axis_sign(i, k);
+}
+
+/// all 9 samples of a hex
+inline void hex_samples(const std::array<Vec3, 8>& p, double s[9])
+{
+  for(int i = 0; i < 8; ++i) s[i] = corner_scaled_jacobian(p, i);
+  s[8] = centre_scaled_jacobian(p);
+}
+
+/// the corner samples that depend on corner c: c and its 3 edge neighbours
+/// (the centre sample depends on every corner)
+inline const int* corner_samples_of_corner(int c)
+{
+  static const int s[8][4] = {
+    {0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+    {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
+  return s[c];
+}
+
+/// gradient of det[a b c] / (|a||b||c|) (of value f) with respect to a, b and c
+inline void normalized_triple_product_gradient(const Vec3& a, const Vec3& b, const Vec3& c, double f,
+                                               Vec3& ga, Vec3& gb, Vec3& gc)
+{
+  const double la = squared_norm(a), lb = squared_norm(b), lc = squared_norm(c);
+  const double l = std::sqrt(la * lb * lc);
+  if(!(l > std::numeric_limits<double>::min()))
+  {
+    ga = gb = gc = Vec3{0., 0., 0.};
+    return;
+  }
+  const double il = 1. / l;
+  ga = il * cross(b, c) - (f / la) * a;
+  gb = il * cross(c, a) - (f / lb) * b;
+  gc = il * cross(a, b) - (f / lc) * c;
+}
+
+/// gradient, with respect to corner c, of sample s of the hex `p` (its value
+/// `f`); zero when the sample does not depend on c
+inline Vec3 hex_sample_gradient(const std::array<Vec3, 8>& p, int s, int c, double f)
+{
+  Vec3 ga, gb, gc;
+  if(s == 8)
+  {
+    Vec3 x1, x2, x3;
+    principal_axes(p, x1, x2, x3);
+    normalized_triple_product_gradient(x1, x2, x3, f, ga, gb, gc);
+    return hex_axis_sign(c, 0) * ga + hex_axis_sign(c, 1) * gb + hex_axis_sign(c, 2) * gc;
+  }
+  const int* n = hex_corner_edges[s];
+  if(s != c && n[0] != c && n[1] != c && n[2] != c) return Vec3{0., 0., 0.};
+  normalized_triple_product_gradient(p[n[0]] - p[s], p[n[1]] - p[s], p[n[2]] - p[s], f, ga, gb, gc);
+  if(s == c) return -1. * (ga + gb + gc);
+  if(n[0] == c) return ga;
+  if(n[1] == c) return gb;
+  return gc;
 }
 
 /// minimum over the 8 corners only
