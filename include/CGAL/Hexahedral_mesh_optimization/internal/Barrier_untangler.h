@@ -219,7 +219,7 @@ private:
         }
         double f2 = 0.;
         for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
-        const double c23 = std::pow(chi, -2. / 3.);
+        const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
         e += f2 * c23;
         if(!grad) continue;
         // cofactor matrix: d det / d J
@@ -321,7 +321,9 @@ private:
       if(s_hist.size() > 7) { s_hist.pop_front(); y_hist.pop_front(); }
       const double de = e - e_new;
       x = x_new; g = g_new; e = e_new;
-      if(de < 1e-12 * (std::abs(e) + 1.)) break;
+      // converged: the energy fell by less than this (relative); at 1e-12 the
+      // interior stage of a 1M-hex grid took 15 s instead of 10, same result
+      if(de < 1e-9 * (std::abs(e) + 1.)) break;
     }
   }
 

@@ -46,6 +46,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <sstream>
@@ -143,9 +144,11 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
     for(std::size_t h = 0; h < hexes.size(); ++h) if(seed[h]) seeds.push_back(h);
     if(seeds.empty() || time_limit_reached(time_limit)) break;
     const double w = w0 * std::pow(10., 2 + k);
-    for(const Local_region& region : extract_local_regions(topo, seeds, 2))
-    {
-      if(time_limit_reached(time_limit)) break;
+    // the regions are independent (see `for_each_region`), and so are their
+    // reads of the constraints and the reference tree (built by now)
+    std::atomic<std::size_t> done(0);
+    for_each_region(extract_local_regions(topo, seeds, 2), [&](const Local_region& region) {
+      if(time_limit_reached(time_limit)) return;
       auto region_residual = [&] {
         double m = 0.;
         for(std::size_t v : region.free_vertices) if(bc[v].type != Vertex_class::interior) m = (std::max)(m, residual(v));
@@ -158,13 +161,15 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
       b.set_time_limit(time_limit);
       std::size_t inverted_before = 0;
       for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_before;
-      if(!b.run_injective(points, 100)) continue;
+      if(!b.run_injective(points, 100)) return;
       std::size_t inverted_after = 0;
       for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_after;
       if(region_residual() > before || inverted_after > inverted_before)
         for(std::size_t i = 0; i < saved.size(); ++i) points[region.free_vertices[i]] = saved[i];
-      else if(regions_done) ++*regions_done;
-    }
+      else
+        ++done;
+    });
+    if(regions_done) *regions_done += done.load();
   }
   ts.update_constraints(points, bc);
   worst = 0.;
@@ -210,7 +215,10 @@ public:
     const Optimization_schedule& sc = m_s.schedule;
     if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
       interior_stage(topo, ts->boundary(), mesh, res);
-    if(!stopped())
+    // (what the interior stage freed needs no edge-angle stage: its set-up,
+    // ideal angles and target lengths over the whole mesh, cost 5 s on a
+    // 1M-hex grid with nothing left to untangle)
+    if(count_inverted(mesh) > 0 && !stopped())
       edge_angle_stage(topo, *ts, mesh, res);
     if(m_s.barrier_fallback && sc.barrier_stage && count_inverted(mesh) > 0 && !stopped())
       barrier_stage(topo, *ts, mesh, res);
@@ -259,9 +267,8 @@ private:
   {
     const auto t = Clock::now();
     Stage_report sr = begin_stage("interior", count_inverted(mesh));
-    untangle_interior(topo, boundary, mesh);
+    sr.details = untangle_interior(topo, boundary, mesh);
     sr.rounds = 1;
-    sr.details = "foldover-free energy, interior vertices only";
     end_stage(sr, mesh, t, res);
   }
 
@@ -319,14 +326,13 @@ private:
       ++sr.rounds;
       std::vector<Boundary_constraint> bc;
       ts.update_constraints(mesh.points, bc);
-      for(const Local_region& region : extract_local_regions(topo, bad, 2 + int(pass)))
-      {
-        if(stopped()) break;
+      for_each_region(extract_local_regions(topo, bad, 2 + int(pass)), [&](const Local_region& region) {
+        if(stopped()) return;
         Barrier_untangler b(topo, region, bc, weights[pass] * w0);
         b.set_sliding_weight(sc.barrier_sliding_fraction * weights[pass] * w0);
         b.set_time_limit(m_s.time_limit);
         run_on_region(b, region, mesh, false);
-      }
+      });
       m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
     }
     sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
@@ -352,20 +358,30 @@ private:
   /// untangle is untangled without moving the surface. A region's result is
   /// kept only if it lowers its inverted count: where the interior cannot
   /// help, the next stages start from the input as it was.
-  void untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh) const
+  /// Returns what it did, for the stage's report.
+  std::string untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary,
+                                Hex_mesh_arrays& mesh) const
   {
     const std::vector<Boundary_constraint> no_constraints(mesh.points.size());
-    for(Local_region region : extract_local_regions(topo, inverted_hexes(mesh), m_s.schedule.interior_rings))
+    std::vector<Local_region> regions = extract_local_regions(topo, inverted_hexes(mesh), m_s.schedule.interior_rings);
+    for(Local_region& region : regions)
     {
-      if(stopped()) break;
       std::vector<std::size_t> interior;
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
-      if(interior.empty()) continue;
       region.free_vertices.swap(interior);
+    }
+    for_each_region(regions, [&](const Local_region& region) {
+      if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
       b.set_time_limit(m_s.time_limit);
       run_on_region(b, region, mesh, true);
-    }
+    });
+    std::size_t largest = 0;
+    for(const Local_region& region : regions) largest = (std::max)(largest, region.hexes.size());
+    std::ostringstream d;
+    d << "foldover-free energy, interior vertices only; " << regions.size() << " regions, the largest of "
+      << largest << " hexes";
+    return d.str();
   }
 
   /// Untangling by `b` on `region`, undone unless the region's inverted

@@ -20,6 +20,11 @@
 #include <algorithm>
 #include <vector>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
@@ -100,6 +105,31 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
       regions.push_back(std::move(reg));
   }
   return regions;
+}
+
+/// g(i) for i in [0, n), on TBB's threads when the package is linked with TBB
+template <class G>
+void parallel_for_each_index(std::size_t n, G g)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for(std::size_t i = r.begin(); i != r.end(); ++i) g(i);
+  });
+#else
+  for(std::size_t i = 0; i < n; ++i) g(i);
+#endif
+}
+
+/// f(region) for every region of `regions` (from `extract_local_regions`),
+/// on TBB's threads when the package is linked with TBB. The regions are
+/// independent: a free vertex has every hex around it in its own region, so
+/// no region moves a vertex another region reads, and the result is the same
+/// on any number of threads and in any order. f must only write the free
+/// vertices of its region (and what it owns).
+template <class F>
+void for_each_region(const std::vector<Local_region>& regions, F f)
+{
+  parallel_for_each_index(regions.size(), [&](std::size_t i) { f(regions[i]); });
 }
 
 } // namespace internal

@@ -414,6 +414,14 @@ private:
     return true;
   }
 
+  /// the closest point of the reference to `p`, the search starting from
+  /// `hint`, a point of the reference
+  Vec3 closest_on_reference_from(const Vec3& p, const Vec3& hint) const
+  {
+    const Point_3 q = tree_->closest_point(Point_3(p[0], p[1], p[2]), Point_3(hint[0], hint[1], hint[2]));
+    return {q.x(), q.y(), q.z()};
+  }
+
   void compute_target(const std::vector<Vec3>& mesh_points)
   {
     const std::size_t nb = boundary_.vertices.size();
@@ -437,6 +445,7 @@ private:
       static_cast<unsigned int>(std::lround(param_.masked_fraction * iters)));
     std::vector<unsigned char> sharp;
     std::vector<std::size_t> degree;
+    std::vector<Vec3> last_projection;
     const double lambda = param_.smoothing_step;
     for(unsigned int it = 0; it < iters; ++it)
     {
@@ -476,8 +485,19 @@ private:
         Q[bi] = P[bi] + lambda * L;
       }
       if(param_.project_every_iteration || it + 1 == iters)
+      {
+        // each query starts from the vertex's last projection (a point of
+        // the reference): the same closest points, without the tree's
+        // nearest-neighbour search and with a tight radius from the start
+        // (the smoothing moves a vertex by a fraction of an edge)
+        const bool hinted = last_projection.size() == nb;
         for(std::size_t bi = 0; bi < nb; ++bi)
-          closest_on_reference(Q[bi], Q[bi]);
+        {
+          if(hinted) Q[bi] = closest_on_reference_from(Q[bi], last_projection[bi]);
+          else closest_on_reference(Q[bi], Q[bi]);
+        }
+        last_projection = Q;
+      }
       std::swap(P, Q);
     }
     if(iters == 0)
