@@ -10,7 +10,8 @@
 // smoothing), on flat arrays. The driver `run` calls one method per stage:
 //   1. `set_up`: normalise (mean edge 0.025, as the untangler), target
 //      surface Ω_t of the reference (the original input's boundary, or the
-//      user's surface), ideal angles;
+//      user's surface); the ideal angles are made when an edge-angle pass
+//      first needs them;
 //   2. `pull_back_stage` (Pull_back.h), only when the surface error exceeds
 //      the tolerance (after an untangling that relaxed the surface), and kept
 //      only if it lowers the surface error;
@@ -165,7 +166,7 @@ private:
   /// `Optimization_schedule::excellent_msj`
   double aimed_msj() const { return (std::min)(m_s.target_msj, m_s.schedule.excellent_msj); }
 
-  /// the reference surface, the normalisation, Ω_t and the ideal angles
+  /// the reference surface, the normalisation and Ω_t
   void set_up(Run_state& st, const Hex_mesh_arrays& original)
   {
     // reference surface (model coordinates): for the guard cut along (0, 2)
@@ -203,7 +204,6 @@ private:
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
     st.ts.reset(new Target_surface(st.mesh, m_target_points, m_target_tris, tsp));
-    st.ideal.reset(new Ideal_angles(ideal_angles_on_target(*st.topo, *st.ts, st.mesh.points)));
   }
 
   bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }
@@ -629,6 +629,10 @@ private:
   {
     const Target_surface& ts = *st.ts;
     const Surface_guard& guard = *st.guard;
+    // the ideal angles, when a pass first needs them (their boundary part,
+    // the dihedral angles of Ω_t, does not change: the same whenever made;
+    // over a whole 1M-hex mesh they take seconds)
+    if(!st.ideal) st.ideal.reset(new Ideal_angles(ideal_angles_on_target(*st.topo, ts, st.mesh.points)));
     Local_optimizer opt(*st.topo, *st.ideal,
                         [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
                           ts.update_constraints(p, bc);
