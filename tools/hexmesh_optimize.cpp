@@ -215,7 +215,7 @@ int main(int argc, char** argv)
     const bool has_output = !options.output.empty();
     if(has_output)
     {
-      input_mesh_for_check = mesh;
+      if(options.check && !has_reference) input_mesh_for_check = mesh; // the reference volume of --check
       const Clock::time_point start = Clock::now();
       // the hard stop counts from the start of the program: what reading took is spent
       const double time_left = options.time_limit > 0.

@@ -84,12 +84,9 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 #include <algorithm>
 #include <array>
@@ -525,17 +522,10 @@ private:
   template <class F>
   void for_each_vertex(const std::vector<std::size_t>& vertices, F f) const
   {
-#ifdef CGAL_LINKED_WITH_TBB
     if(m_s.parallel && m_colours.size() > 1)
-    {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices.size(), 64),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for(std::size_t i = r.begin(); i != r.end(); ++i) f(vertices[i]);
-                        });
-      return;
-    }
-#endif
-    for(std::size_t v : vertices) f(v);
+      parallel_for_each_index(vertices.size(), [&](std::size_t i) { f(vertices[i]); }, 64);
+    else
+      for(std::size_t v : vertices) f(v);
   }
 
   // scratch for the samples of the hexes around the vertex being moved, one

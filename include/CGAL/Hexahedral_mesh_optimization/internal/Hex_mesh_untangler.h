@@ -213,14 +213,15 @@ public:
       ts.reset(new Target_surface(mesh, tsp));
 
     const Optimization_schedule& sc = m_s.schedule;
+    m_inverted = count_inverted(mesh); // then kept by each stage's report
     if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
       interior_stage(topo, ts->boundary(), mesh, res);
     // (what the interior stage freed needs no edge-angle stage: its set-up,
     // ideal angles and target lengths over the whole mesh, cost 5 s on a
     // 1M-hex grid with nothing left to untangle)
-    if(count_inverted(mesh) > 0 && !stopped())
+    if(m_inverted > 0 && !stopped())
       edge_angle_stage(topo, *ts, mesh, res);
-    if(m_s.barrier_fallback && sc.barrier_stage && count_inverted(mesh) > 0 && !stopped())
+    if(m_s.barrier_fallback && sc.barrier_stage && m_inverted > 0 && !stopped())
       barrier_stage(topo, *ts, mesh, res);
     if(sc.surface_stage && !stopped())
       surface_stage(topo, *ts, mesh, res);
@@ -241,12 +242,12 @@ private:
   static double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
   /// starts the report of a stage and tells the visitor
-  Stage_report begin_stage(const std::string& name, std::size_t inverted)
+  Stage_report begin_stage(const std::string& name)
   {
     Stage_report sr;
     sr.name = name;
-    sr.inverted_before = inverted;
-    m_visitor.stage_started(name, inverted);
+    sr.inverted_before = m_inverted;
+    m_visitor.stage_started(name, m_inverted);
     return sr;
   }
 
@@ -254,7 +255,7 @@ private:
   void end_stage(Stage_report& sr, const Hex_mesh_arrays& mesh, Clock::time_point t, Optimization_result& res)
   {
     const Quality_statistics q = quality_statistics(mesh);
-    sr.inverted_after = q.inverted;
+    sr.inverted_after = m_inverted = q.inverted;
     sr.msj_after = q.msj;
     sr.seconds = since(t);
     res.stages.push_back(sr);
@@ -266,7 +267,7 @@ private:
                       Optimization_result& res)
   {
     const auto t = Clock::now();
-    Stage_report sr = begin_stage("interior", count_inverted(mesh));
+    Stage_report sr = begin_stage("interior");
     sr.details = untangle_interior(topo, boundary, mesh);
     sr.rounds = 1;
     end_stage(sr, mesh, t, res);
@@ -296,7 +297,7 @@ private:
     // `edge_angle_stalled_rounds` (see the manual)
     ls.max_region_hexes = sc.edge_angle_max_region_hexes;
     ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
-    Stage_report sr = begin_stage("edge-angle", count_inverted(mesh));
+    Stage_report sr = begin_stage("edge-angle");
     const Local_optimizer_report r = opt.run(mesh.points, ls);
     sr.rounds = r.rounds;
     std::ostringstream d;
@@ -314,7 +315,7 @@ private:
   {
     const auto t = Clock::now();
     const Optimization_schedule& sc = m_s.schedule;
-    Stage_report sr = begin_stage("barrier", count_inverted(mesh));
+    Stage_report sr = begin_stage("barrier");
     const double w0 = 1. / (0.025 * 0.025);
     std::vector<double> weights;
     if(m_s.relax_surface) weights.assign(std::begin(sc.barrier_weights_relaxed), std::end(sc.barrier_weights_relaxed));
@@ -345,7 +346,7 @@ private:
   {
     const auto t = Clock::now();
     const Optimization_schedule& sc = m_s.schedule;
-    Stage_report sr = begin_stage("surface", count_inverted(mesh));
+    Stage_report sr = begin_stage("surface");
     std::size_t regions = 0;
     const double worst = pull_back_to_surface(topo, ts, mesh.points, sc.surface_residual_edges * 0.025,
                                               sc.surface_passes, m_s.time_limit, &regions);
@@ -428,6 +429,8 @@ private:
 
   Untangle_settings m_s;
   Visitor& m_visitor;
+  /// the inverted count of the current state, from the last count or stage report
+  std::size_t m_inverted = 0;
 };
 
 } // namespace internal

@@ -16,14 +16,10 @@
 // (`rings` grows with the number of failed rounds, see Untangler.h).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/parallel_for_each_index.h>
 
 #include <algorithm>
 #include <vector>
-
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
@@ -105,19 +101,6 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
       regions.push_back(std::move(reg));
   }
   return regions;
-}
-
-/// g(i) for i in [0, n), on TBB's threads when the package is linked with TBB
-template <class G>
-void parallel_for_each_index(std::size_t n, G g)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    for(std::size_t i = r.begin(); i != r.end(); ++i) g(i);
-  });
-#else
-  for(std::size_t i = 0; i < n; ++i) g(i);
-#endif
 }
 
 /// f(region) for every region of `regions` (from `extract_local_regions`),
