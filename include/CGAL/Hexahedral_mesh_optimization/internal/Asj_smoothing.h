@@ -26,8 +26,8 @@
 //     below min(floor, its own start), in particular the MSJ never drops
 //     under min(floor, MSJ before);
 //   - F_v rises (the objective: see "Choices");
-//   - for a boundary vertex, the local surface deviation (`local_deviation`,
-//     or the built-in check) stays within max(`max_surface_deviation`, the
+//   - for a boundary vertex, the local surface deviation (`guard`, or the
+//     built-in check) stays within max(`max_surface_deviation`, the
 //     deviation with v where it was).
 // Only vertices near a move of the previous pass are visited again; the run
 // stops when a pass raises the ASJ by less than `min_asj_gain`, after
@@ -94,17 +94,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <functional>
 #include <limits>
 #include <vector>
 
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
-
-/// (positions, boundary vertex v, trial position x of v) -> largest distance
-/// between the boundary around v and the reference with v at x
-typedef std::function<Surface_deviation(const std::vector<Vec3>&, std::size_t, const Vec3&)> Local_deviation;
 
 struct Asj_smoothing_settings
 {
@@ -141,16 +136,16 @@ struct Asj_smoothing_settings
   /// vertex and the reference; a move never takes it beyond
   /// max(this, the distance before the move). Infinity disables the check.
   double max_surface_deviation = std::numeric_limits<double>::infinity();
-  /// How the deviation is measured. Empty: the built-in test against the
+  /// How the deviation is measured. Null: the built-in test against the
   /// boundary as the stage received it (see `builtin_surface_test`), which
-  /// bounds what this stage adds to the surface error. Given (e.g. a
-  /// `Surface_guard::local_deviations`): each direction with v at x must
-  /// stay within max(`max_surface_deviation`, its value with v where it is).
-  Local_deviation local_deviation;
-  /// With `local_deviation` given: a move that passes the built-in test
+  /// bounds what this stage adds to the surface error. Given: each direction
+  /// of `Surface_guard::local_deviations` with v at x must stay within
+  /// max(`max_surface_deviation`, its value with v where it is).
+  const Surface_guard* guard = nullptr;
+  /// With `guard` given: a move that passes the built-in test
   /// against the boundary as the stage received it, with this distance
   /// instead of `max_surface_deviation`, is accepted without calling
-  /// `local_deviation`. Set it to what the surface error may still grow by
+  /// the guard. Set it to what the surface error may still grow by
   /// (bound − error at the start, in mesh units): by the triangle
   /// inequality such a move keeps the error within the bound (up to the
   /// sampling of both tests). The built-in test costs a few point-quad
@@ -380,7 +375,7 @@ public:
     // for the built-in deviation: the boundary quads within two rings of
     // each moving boundary vertex, its own first
     m_ring_off.assign(nv + 1, 0);
-    if(m_check_surface && (!s.local_deviation || s.start_deviation_budget > 0.))
+    if(m_check_surface && (!s.guard || s.start_deviation_budget > 0.))
     {
       std::vector<std::size_t> ring;
       for(std::size_t v = 0; v < nv; ++v)
@@ -713,10 +708,10 @@ private:
   bool surface_test(std::size_t v, const Vec3& x, Surface_deviation& allowed) const
   {
     if(!m_check_surface || m_kind[v] == FREE) return true;
-    if(!m_s.local_deviation) return builtin_surface_test(v, x, m_s.max_surface_deviation);
+    if(!m_s.guard) return builtin_surface_test(v, x, m_s.max_surface_deviation);
     if(m_s.start_deviation_budget > 0. && builtin_surface_test(v, x, m_s.start_deviation_budget)) return true;
-    if(allowed.to_reference < 0.) allowed = m_s.local_deviation(m_p, v, m_p[v]).bound(m_s.max_surface_deviation);
-    return m_s.local_deviation(m_p, v, x).within(allowed);
+    if(allowed.to_reference < 0.) allowed = m_s.guard->local_deviations(m_p, v, m_p[v]).bound(m_s.max_surface_deviation);
+    return m_s.guard->allows(m_p, v, x, allowed);
   }
 
   // Backtracking along d: t = 1, 1/2, ... Returns the number of halvings of

@@ -116,7 +116,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
         const Vec3 y = x + step * (home[v] - x);
         // (written so that a NaN fails, as a zero-length edge would give)
         if(!(probe.local_minimum(points, v, y) >= floor)) continue;
-        if(!guard.local_deviations(points, v, y).within(dev)) continue;
+        if(!guard.allows(points, v, y, dev)) continue;
         points[v] = y;
         done = true;
       }

@@ -418,9 +418,7 @@ private:
     as.min_sj_floor = q.msj - floor_drop;
     as.max_surface_deviation = guard_tolerance;
     const Surface_guard& guard = *st.guard;
-    as.local_deviation = [&guard](const std::vector<Vec3>& p, std::size_t v, const Vec3& x) {
-      return guard.local_deviations(p, v, x);
-    };
+    as.guard = &guard;
     as.time_limit = m_s.time_limit;
     const Asj_smoothing_report ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
     std::ostringstream d;
@@ -701,7 +699,7 @@ private:
       const double now = probe.local_minimum(points, v, points[v]);
       if(probe.local_minimum(points, v, a) < (std::min)(floor, now)) continue;
       const Surface_deviation allowed = guard.local_deviations(points, v, points[v]).bound(tolerance);
-      if(!guard.local_deviations(points, v, a).within(allowed)) continue;
+      if(!guard.allows(points, v, a, allowed)) continue;
       points[v] = a;
       ++n;
     }

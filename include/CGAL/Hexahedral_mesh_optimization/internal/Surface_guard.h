@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -111,14 +112,41 @@ public:
   /// the two directions of `local_deviation`
   Surface_deviation local_deviations(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
   {
+    ++m_queries;
+    Surface_deviation d;
+    measure(points, v, x, nullptr, d);
+    return d;
+  }
+
+  /// whether `local_deviations(points, v, x).within(bound)`, the same
+  /// answer: it stops at the first sample beyond the bound (a rejected move
+  /// costs a fraction of the measure) and takes, for each start sample, the
+  /// first current triangle within the bound rather than the closest one
+  bool allows(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, const Surface_deviation& bound) const
+  {
+    ++m_queries;
+    Surface_deviation d;
+    return measure(points, v, x, &bound, d);
+  }
+
+  /// how many times `local_deviations` and `allows` were called
+  std::size_t number_of_queries() const { return m_queries.load(); }
+
+private:
+  /// measures `d` (see `local_deviations`); with `bound`, stops with false
+  /// as soon as a sample is beyond it (then `d` is partial)
+  bool measure(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, const Surface_deviation* bound,
+               Surface_deviation& d) const
+  {
     const Hex_mesh_boundary& b = m_boundary;
-    if(!b.is_boundary_vertex(v)) return Surface_deviation();
+    if(!b.is_boundary_vertex(v)) return true;
     const std::size_t bi = b.boundary_index[v];
     auto corners_of = [&](std::size_t q, const std::vector<Vec3>& pts, std::array<Vec3, 4>& c) {
       for(int i = 0; i < 4; ++i) c[i] = (&pts == &points && b.quads[q][i] == v) ? x : pts[b.quads[q][i]];
     };
-    // quads around v, and the quads sharing a vertex with them (which may
-    // cover what v's quads no longer cover)
+    // quads around v first, then the quads sharing a vertex with them (which
+    // may cover what v's quads no longer cover): a start sample is mostly
+    // covered by its own quad, which ends its search under a bound
     // scratch, one per thread (the ASJ smoothing calls this from several)
     thread_local std::vector<std::size_t> near;
     near.clear();
@@ -131,6 +159,12 @@ public:
       }
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
+    auto own = [&](std::size_t q) {
+      for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1]; ++k)
+        if(b.vertex_quad_list[k] == q) return true;
+      return false;
+    };
+    std::stable_partition(near.begin(), near.end(), own);
     thread_local std::vector<K::Triangle_3> cover;
     cover.clear();
     std::array<Vec3, 4> c;
@@ -140,12 +174,15 @@ public:
       cover.emplace_back(point(c[0]), point(c[1]), point(c[2]));
       cover.emplace_back(point(c[0]), point(c[2]), point(c[3]));
     }
+    // (compared as distances, not squares: the bound is often a deviation
+    // measured before, which a move that leaves the worst sample alone must
+    // meet exactly)
+    const double to = bound ? bound->to_reference : std::numeric_limits<double>::infinity();
+    const double from = bound ? bound->from_reference : std::numeric_limits<double>::infinity();
     // each query starts from the closest point of the previous sample (the
     // samples come in order along the quads): the tree then prunes with a
-    // tight radius from the start and skips its nearest-neighbour search.
-    // The distances are the same; fertility_gregson11's first three max-min
-    // turns, with the same moves, took 3.4 / 1.7 / 1.9 s instead of 4.7 / 2.9
-    // / 2.4 s, and the time saved went to further turns (MSJ 0.708 -> 0.721)
+    // tight radius from the start and skips its nearest-neighbour search
+    // (the same distances; see the manual's implementation notes)
     K::Point_3 hint = m_tree.closest_point(point(x));
     auto squared_distance_from_hint = [&](const Vec3& p) {
       const K::Point_3 q = point(p);
@@ -153,38 +190,52 @@ public:
       return CGAL::squared_distance(q, hint);
     };
     double d2 = CGAL::squared_distance(point(x), hint), e2 = 0.;
-    for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1]; ++k)
+    bool within = std::sqrt(d2) <= to;
+    // mesh -> reference: the largest sample distance of a quad, false as soon
+    // as one is beyond the bound
+    auto mesh_to_reference = [&](const std::array<Vec3, 4>& quad, bool fine, double& q2) {
+      bool ok = true;
+      auto visit = [&](const Vec3& p) {
+        if(!ok) return;
+        q2 = (std::max)(q2, squared_distance_from_hint(p));
+        ok = std::sqrt(q2) <= to;
+      };
+      if(fine) for_each_fine_sample(quad, visit);
+      else for_each_sample(quad, visit);
+      return ok;
+    };
+    for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1] && within; ++k)
     {
       const std::size_t q = b.vertex_quad_list[k];
       // mesh -> reference: samples of the moved quad's two triangles; where
       // they come near the largest deviation allowed, a fine grid too (the
       // largest distance of a flat triangle to a curved reference can lie
-      // between the coarse samples: fertility_gregson11, a max-min stage
-      // with the coarse samples alone took the error from 0.005000 to
-      // 0.005060 for a bound of 0.005036)
+      // between the coarse samples)
       corners_of(q, points, c);
       double q2 = 0.;
-      for_each_sample(c, [&](const Vec3& p) { q2 = (std::max)(q2, squared_distance_from_hint(p)); });
-      if(q2 > m_dense_above2)
-        for_each_fine_sample(c, [&](const Vec3& p) { q2 = (std::max)(q2, squared_distance_from_hint(p)); });
+      within = mesh_to_reference(c, false, q2);
+      if(within && q2 > m_dense_above2) within = mesh_to_reference(c, true, q2);
       d2 = (std::max)(d2, q2);
+      if(!within) break;
       // reference -> mesh: samples of the quad at its start position
       corners_of(q, m_start, c);
       for_each_sample(c, [&](const Vec3& p) {
+        if(!within) return;
         const K::Point_3 h = point(p);
         double best = std::numeric_limits<double>::max();
         for(const K::Triangle_3& t : cover)
         {
           best = (std::min)(best, CGAL::squared_distance(h, t));
-          if(best <= e2) break; // cannot raise the maximum
+          if(best <= e2 || (bound && std::sqrt(best) <= from)) break; // cannot raise the maximum, or within the bound
         }
         e2 = (std::max)(e2, best);
+        within = std::sqrt(e2) <= from;
       });
     }
-    return Surface_deviation{std::sqrt(d2), std::sqrt(e2)};
+    d = Surface_deviation{std::sqrt(d2), std::sqrt(e2)};
+    return within;
   }
 
-private:
   static K::Point_3 point(const Vec3& p) { return K::Point_3(p[0], p[1], p[2]); }
 
   const Hex_mesh_boundary& m_boundary;
@@ -226,6 +277,7 @@ private:
 
   std::vector<Vec3> m_start;
   double m_dense_above2 = std::numeric_limits<double>::infinity();
+  mutable std::atomic<std::size_t> m_queries{0};
   std::vector<K::Triangle_3> m_triangles;
   Tree m_tree;
 };

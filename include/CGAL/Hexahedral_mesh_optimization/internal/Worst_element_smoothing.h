@@ -305,7 +305,7 @@ private:
         allowed = m_guard->local_deviations(points, v, start).bound(m_max_deviation);
         have_allowed = true;
       }
-      return m_guard->local_deviations(points, v, x).within(allowed);
+      return m_guard->allows(points, v, x, allowed);
     };
     double f0 = local_minimum(points, v, points[v]);
     // the kinds of move tried in turn, until one is accepted
