@@ -710,7 +710,7 @@ private:
     if(!m_check_surface || m_kind[v] == FREE) return true;
     if(!m_s.guard) return builtin_surface_test(v, x, m_s.max_surface_deviation);
     if(m_s.start_deviation_budget > 0. && builtin_surface_test(v, x, m_s.start_deviation_budget)) return true;
-    if(allowed.to_reference < 0.) allowed = m_s.guard->local_deviations(m_p, v, m_p[v]).bound(m_s.max_surface_deviation);
+    if(allowed.to_reference < 0.) allowed = m_s.guard->bound_at(m_p, v, m_p[v], m_s.max_surface_deviation);
     return m_s.guard->allows(m_p, v, x, allowed);
   }
 

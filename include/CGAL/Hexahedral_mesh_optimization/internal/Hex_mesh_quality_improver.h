@@ -677,7 +677,7 @@ private:
     for(const auto& o : over)
     {
       const std::size_t v = region.free_vertices[o.first];
-      if(!o.second.within(guard.local_deviations(points, v, points[v]).bound(tolerance))) { ok = false; break; }
+      if(!o.second.within(guard.bound_at(points, v, points[v], tolerance))) { ok = false; break; }
     }
     for(std::size_t i = 0; i < after.size(); ++i) points[region.free_vertices[i]] = after[i];
     return ok;
@@ -698,7 +698,7 @@ private:
       if(squared_norm(a - points[v]) == 0.) continue;
       const double now = probe.local_minimum(points, v, points[v]);
       if(probe.local_minimum(points, v, a) < (std::min)(floor, now)) continue;
-      const Surface_deviation allowed = guard.local_deviations(points, v, points[v]).bound(tolerance);
+      const Surface_deviation allowed = guard.bound_at(points, v, points[v], tolerance);
       if(!guard.allows(points, v, a, allowed)) continue;
       points[v] = a;
       ++n;

@@ -85,7 +85,7 @@ public:
   /// current positions, the points that must stay covered.
   Surface_guard(const Hex_mesh_boundary& boundary, const std::vector<Vec3>& reference_points,
                 const std::vector<Tri>& reference_triangles, const std::vector<Vec3>& start)
-    : m_boundary(boundary), m_start(start)
+    : m_boundary(boundary), m_start(start), m_quad_cache(boundary.quads.size())
   {
     m_triangles.reserve(reference_triangles.size());
     for(const Tri& t : reference_triangles)
@@ -114,43 +114,146 @@ public:
   {
     ++m_queries;
     Surface_deviation d;
-    measure(points, v, x, nullptr, d);
+    measure(points, v, x, Surface_deviation{0., 0.}, nullptr, d);
+    return d;
+  }
+
+  /// `local_deviations(points, v, x).bound(tolerance)`, the same value: a
+  /// direction known to be within `tolerance` is not measured exactly
+  Surface_deviation bound_at(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, double tolerance) const
+  {
+    ++m_queries;
+    Surface_deviation d;
+    measure(points, v, x, Surface_deviation{tolerance, tolerance}, nullptr, d);
     return d;
   }
 
   /// whether `local_deviations(points, v, x).within(bound)`, the same
   /// answer: it stops at the first sample beyond the bound (a rejected move
-  /// costs a fraction of the measure) and takes, for each start sample, the
-  /// first current triangle within the bound rather than the closest one
+  /// costs a fraction of the measure), takes, for each start sample, the
+  /// first current triangle within the bound rather than the closest one,
+  /// and skips the quads that the cache proves within it
   bool allows(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, const Surface_deviation& bound) const
   {
     ++m_queries;
     Surface_deviation d;
-    return measure(points, v, x, &bound, d);
+    return measure(points, v, x, bound, &bound, d);
   }
 
-  /// how many times `local_deviations` and `allows` were called
+  /// how many times `local_deviations`, `bound_at` and `allows` were called
   std::size_t number_of_queries() const { return m_queries.load(); }
 
 private:
-  /// measures `d` (see `local_deviations`); with `bound`, stops with false
-  /// as soon as a sample is beyond it (then `d` is partial)
-  bool measure(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, const Surface_deviation* bound,
-               Surface_deviation& d) const
+  /// The measure of the quads around v with v at x, `d` = max(`floor`, the
+  /// deviation) in each direction: what is below the floor need not be
+  /// exact. With `bound`, stops with false as soon as a sample is beyond it
+  /// (`d` is then partial).
+  bool measure(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, const Surface_deviation& floor,
+               const Surface_deviation* bound, Surface_deviation& d) const
   {
     const Hex_mesh_boundary& b = m_boundary;
+    d = floor;
     if(!b.is_boundary_vertex(v)) return true;
     const std::size_t bi = b.boundary_index[v];
-    auto corners_of = [&](std::size_t q, const std::vector<Vec3>& pts, std::array<Vec3, 4>& c) {
-      for(int i = 0; i < 4; ++i) c[i] = (&pts == &points && b.quads[q][i] == v) ? x : pts[b.quads[q][i]];
+    const std::size_t first = b.vertex_quad_offsets[bi], last = b.vertex_quad_offsets[bi + 1];
+    const double to = bound ? bound->to_reference : std::numeric_limits<double>::infinity();
+    bool within = true;
+    std::array<Vec3, 4> c;
+    for(std::size_t k = first; k < last && within; ++k)
+    {
+      const std::size_t q = b.vertex_quad_list[k];
+      corners_of(q, points, v, x, c);
+      within = quad_to_reference(q, c, floor.to_reference, to, d.to_reference);
+    }
+    if(within) within = start_to_quads(points, v, x, floor.from_reference, bound, d.from_reference);
+    return within;
+  }
+
+  void corners_of(std::size_t q, const std::vector<Vec3>& points, std::size_t v, const Vec3& x,
+                  std::array<Vec3, 4>& c) const
+  {
+    for(int i = 0; i < 4; ++i) c[i] = m_boundary.quads[q][i] == v ? x : points[m_boundary.quads[q][i]];
+  }
+
+  /// Mesh -> reference for quad q at corners c: raises `largest` to the
+  /// quad's largest sample distance to the reference (the coarse samples;
+  /// where they come near the largest deviation allowed, a fine grid too:
+  /// the largest distance of a flat triangle to a curved reference can lie
+  /// between the coarse samples). Returns false as soon as one is beyond
+  /// `bound`. A coarse sample whose cached distance, plus how far it moved
+  /// since, is within `floor` and below the fine-sampling threshold is not
+  /// measured (the distance to the reference is 1-Lipschitz; when one corner
+  /// moved, the samples away from it did not move at all): the answer is the
+  /// one of the full measure.
+  bool quad_to_reference(std::size_t q, const std::array<Vec3, 4>& c, double floor, double bound,
+                         double& largest) const
+  {
+    Quad_cache& cache = m_quad_cache[q];
+    const bool cached = cache.valid;
+    std::array<Vec3, 4> moved;
+    for(int i = 0; i < 4; ++i) moved[i] = cached ? c[i] - cache.corners[i] : Vec3{0., 0., 0.};
+    const double skip_below = (std::min)(floor, std::sqrt(m_dense_above2));
+    std::array<double, number_of_coarse_samples> distance;
+    // each query starts from the closest point of the previous one (the
+    // samples come in order along the quad): the tree then prunes with a
+    // tight radius from the start (the same distances; see the manual)
+    bool have_hint = false;
+    K::Point_3 hint;
+    auto exact = [&](const Vec3& p) {
+      const K::Point_3 x = point(p);
+      hint = have_hint ? m_tree.closest_point(x, hint) : m_tree.closest_point(x);
+      have_hint = true;
+      return std::sqrt(CGAL::squared_distance(x, hint));
     };
-    // quads around v first, then the quads sharing a vertex with them (which
-    // may cover what v's quads no longer cover): a start sample is mostly
-    // covered by its own quad, which ends its search under a bound
-    // scratch, one per thread (the ASJ smoothing calls this from several)
+    double measured = 0.; // the largest distance measured exactly
+    for(int k = 0; k < number_of_coarse_samples; ++k)
+    {
+      const double* w = coarse_sample_weights[k];
+      if(cached)
+      {
+        const double most = cache.distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
+        if(most <= skip_below) { distance[k] = most; continue; }
+      }
+      distance[k] = exact(coarse_sample(c, k));
+      measured = (std::max)(measured, distance[k]);
+      if(!(measured <= bound)) { largest = (std::max)(largest, measured); return false; }
+    }
+    bool ok = true;
+    if(measured * measured > m_dense_above2)
+      for_each_fine_sample(c, [&](const Vec3& p) {
+        if(!ok) return;
+        measured = (std::max)(measured, exact(p));
+        ok = measured <= bound;
+      });
+    largest = (std::max)(largest, measured);
+    if(ok)
+    {
+      cache.valid = true;
+      cache.corners = c;
+      cache.distance = distance;
+    }
+    return ok;
+  }
+
+  /// Reference -> mesh: raises `largest` to the largest distance of the
+  /// samples of v's quads at their start positions to the current quads
+  /// around v and around its quad neighbours (which may cover what v's quads
+  /// no longer cover). A start sample within max(`largest`, `floor`) of a
+  /// current triangle is settled. Returns false as soon as one is beyond
+  /// `bound` (compared as distances, not squares: the bound is often a
+  /// deviation measured before, which a move that leaves the worst sample
+  /// alone must meet exactly).
+  bool start_to_quads(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, double floor,
+                      const Surface_deviation* bound, double& largest) const
+  {
+    const Hex_mesh_boundary& b = m_boundary;
+    const std::size_t bi = b.boundary_index[v];
+    const std::size_t first = b.vertex_quad_offsets[bi], last = b.vertex_quad_offsets[bi + 1];
+    // v's own quads first: a start sample is mostly covered by its own quad
+    // (scratch, one per thread: the ASJ smoothing calls this from several)
     thread_local std::vector<std::size_t> near;
     near.clear();
-    for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1]; ++k)
+    for(std::size_t k = first; k < last; ++k)
       for(std::size_t u : b.quads[b.vertex_quad_list[k]])
       {
         const std::size_t ui = b.boundary_index[u];
@@ -160,7 +263,7 @@ private:
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
     auto own = [&](std::size_t q) {
-      for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1]; ++k)
+      for(std::size_t k = first; k < last; ++k)
         if(b.vertex_quad_list[k] == q) return true;
       return false;
     };
@@ -170,92 +273,64 @@ private:
     std::array<Vec3, 4> c;
     for(std::size_t q : near)
     {
-      corners_of(q, points, c);
+      corners_of(q, points, v, x, c);
       cover.emplace_back(point(c[0]), point(c[1]), point(c[2]));
       cover.emplace_back(point(c[0]), point(c[2]), point(c[3]));
     }
-    // (compared as distances, not squares: the bound is often a deviation
-    // measured before, which a move that leaves the worst sample alone must
-    // meet exactly)
-    const double to = bound ? bound->to_reference : std::numeric_limits<double>::infinity();
-    const double from = bound ? bound->from_reference : std::numeric_limits<double>::infinity();
-    // each query starts from the closest point of the previous sample (the
-    // samples come in order along the quads): the tree then prunes with a
-    // tight radius from the start and skips its nearest-neighbour search
-    // (the same distances; see the manual's implementation notes)
-    K::Point_3 hint = m_tree.closest_point(point(x));
-    auto squared_distance_from_hint = [&](const Vec3& p) {
-      const K::Point_3 q = point(p);
-      hint = m_tree.closest_point(q, hint);
-      return CGAL::squared_distance(q, hint);
-    };
-    double d2 = CGAL::squared_distance(point(x), hint), e2 = 0.;
-    bool within = std::sqrt(d2) <= to;
-    // mesh -> reference: the largest sample distance of a quad, false as soon
-    // as one is beyond the bound
-    auto mesh_to_reference = [&](const std::array<Vec3, 4>& quad, bool fine, double& q2) {
-      bool ok = true;
-      auto visit = [&](const Vec3& p) {
-        if(!ok) return;
-        q2 = (std::max)(q2, squared_distance_from_hint(p));
-        ok = std::sqrt(q2) <= to;
-      };
-      if(fine) for_each_fine_sample(quad, visit);
-      else for_each_sample(quad, visit);
-      return ok;
-    };
-    for(std::size_t k = b.vertex_quad_offsets[bi]; k < b.vertex_quad_offsets[bi + 1] && within; ++k)
+    const double limit = bound ? bound->from_reference : std::numeric_limits<double>::infinity();
+    const double settled2 = floor * floor;
+    double e2 = 0.;
+    bool ok = true;
+    for(std::size_t k = first; k < last && ok; ++k)
     {
-      const std::size_t q = b.vertex_quad_list[k];
-      // mesh -> reference: samples of the moved quad's two triangles; where
-      // they come near the largest deviation allowed, a fine grid too (the
-      // largest distance of a flat triangle to a curved reference can lie
-      // between the coarse samples)
-      corners_of(q, points, c);
-      double q2 = 0.;
-      within = mesh_to_reference(c, false, q2);
-      if(within && q2 > m_dense_above2) within = mesh_to_reference(c, true, q2);
-      d2 = (std::max)(d2, q2);
-      if(!within) break;
-      // reference -> mesh: samples of the quad at its start position
-      corners_of(q, m_start, c);
+      for(int i = 0; i < 4; ++i) c[i] = m_start[b.quads[b.vertex_quad_list[k]][i]];
       for_each_sample(c, [&](const Vec3& p) {
-        if(!within) return;
+        if(!ok) return;
         const K::Point_3 h = point(p);
         double best = std::numeric_limits<double>::max();
         for(const K::Triangle_3& t : cover)
         {
           best = (std::min)(best, CGAL::squared_distance(h, t));
-          if(best <= e2 || (bound && std::sqrt(best) <= from)) break; // cannot raise the maximum, or within the bound
+          // cannot raise the maximum, or settled
+          if(best <= e2 || (best <= settled2 && std::sqrt(best) <= floor)) break;
         }
         e2 = (std::max)(e2, best);
-        within = std::sqrt(e2) <= from;
+        ok = std::sqrt(e2) <= limit;
       });
     }
-    d = Surface_deviation{std::sqrt(d2), std::sqrt(e2)};
-    return within;
+    largest = (std::max)(largest, std::sqrt(e2));
+    return ok;
   }
 
   static K::Point_3 point(const Vec3& p) { return K::Point_3(p[0], p[1], p[2]); }
 
-  const Hex_mesh_boundary& m_boundary;
-  /// points of the quad's (0, 2) triangles: corners, edge and diagonal
-  /// midpoints, centroids and the points a third of the way along each edge
+  /// The coarse samples of a quad's (0, 2) triangles, as weights of its
+  /// corners: corners, the points a third and half of the way along each
+  /// edge, the (0, 2) diagonal's midpoint and the triangles' centroids
+  static constexpr int number_of_coarse_samples = 19;
+  static constexpr double coarse_sample_weights[number_of_coarse_samples][4] = {
+    {1., 0., 0., 0.}, {2. / 3., 1. / 3., 0., 0.}, {0.5, 0.5, 0., 0.}, {1. / 3., 2. / 3., 0., 0.},
+    {0., 1., 0., 0.}, {0., 2. / 3., 1. / 3., 0.}, {0., 0.5, 0.5, 0.}, {0., 1. / 3., 2. / 3., 0.},
+    {0., 0., 1., 0.}, {0., 0., 2. / 3., 1. / 3.}, {0., 0., 0.5, 0.5}, {0., 0., 1. / 3., 2. / 3.},
+    {0., 0., 0., 1.}, {1. / 3., 0., 0., 2. / 3.}, {0.5, 0., 0., 0.5}, {2. / 3., 0., 0., 1. / 3.},
+    {0.5, 0., 0.5, 0.}, {1. / 3., 1. / 3., 1. / 3., 0.}, {1. / 3., 0., 1. / 3., 1. / 3.}};
+
+  static Vec3 coarse_sample(const std::array<Vec3, 4>& c, int k)
+  {
+    if(k < 16)
+    {
+      const double* w = coarse_sample_weights[k];
+      const int i = k / 4, j = (i + 1) % 4;
+      return w[i] * c[i] + w[j] * c[j];
+    }
+    if(k == 16) return 0.5 * (c[0] + c[2]);
+    return (1. / 3.) * (k == 17 ? c[0] + c[1] + c[2] : c[0] + c[2] + c[3]);
+  }
+
   template <class F>
   static void for_each_sample(const std::array<Vec3, 4>& c, F f)
   {
-    for(int i = 0; i < 4; ++i)
-    {
-      f(c[i]);
-      const Vec3& a = c[i];
-      const Vec3& e = c[(i + 1) % 4];
-      f((2. / 3.) * a + (1. / 3.) * e);
-      f(0.5 * (a + e));
-      f((1. / 3.) * a + (2. / 3.) * e);
-    }
-    f(0.5 * (c[0] + c[2]));
-    f((1. / 3.) * (c[0] + c[1] + c[2]));
-    f((1. / 3.) * (c[0] + c[2] + c[3]));
+    for(int k = 0; k < number_of_coarse_samples; ++k) f(coarse_sample(c, k));
   }
 
   /// the points of a grid of step 1/16 on each of the quad's (0, 2) triangles
@@ -275,7 +350,20 @@ private:
     }
   }
 
+  /// a quad's coarse samples' distances to the reference (at most: a sample
+  /// not measured keeps its bound) and the corners they hold for; one entry per boundary quad, written by
+  /// the visits of its corners (never two at once: a parallel sweep moves
+  /// vertices that share no hex, hence no quad)
+  struct Quad_cache
+  {
+    bool valid = false;
+    std::array<Vec3, 4> corners;
+    std::array<double, number_of_coarse_samples> distance; ///< of each coarse sample
+  };
+
+  const Hex_mesh_boundary& m_boundary;
   std::vector<Vec3> m_start;
+  mutable std::vector<Quad_cache> m_quad_cache;
   double m_dense_above2 = std::numeric_limits<double>::infinity();
   mutable std::atomic<std::size_t> m_queries{0};
   std::vector<K::Triangle_3> m_triangles;

@@ -302,7 +302,7 @@ private:
     auto guard_allows = [&](const Vec3& x) {
       if(!have_allowed)
       {
-        allowed = m_guard->local_deviations(points, v, start).bound(m_max_deviation);
+        allowed = m_guard->bound_at(points, v, start, m_max_deviation);
         have_allowed = true;
       }
       return m_guard->allows(points, v, x, allowed);
