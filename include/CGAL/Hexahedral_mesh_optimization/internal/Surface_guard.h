@@ -92,6 +92,9 @@ public:
       m_triangles.emplace_back(point(reference_points[t[0]]), point(reference_points[t[1]]), point(reference_points[t[2]]));
     m_tree.rebuild(m_triangles.begin(), m_triangles.end());
     m_tree.accelerate_distance_queries();
+    const CGAL::Bbox_3 box = m_tree.bbox();
+    m_rounding = 1e-12 * std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                   CGAL::square(box.zmax() - box.zmin()));
   }
 
   /// From now on, a moved quad whose samples come further than `distance`
@@ -212,7 +215,7 @@ private:
       if(cached)
       {
         const double most = cache.distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
-        if(most <= skip_below) { distance[k] = most; continue; }
+        if(most + m_rounding <= skip_below) { distance[k] = most; continue; }
       }
       distance[k] = exact(coarse_sample(c, k));
       measured = (std::max)(measured, distance[k]);
@@ -220,11 +223,31 @@ private:
     }
     bool ok = true;
     if(measured * measured > m_dense_above2)
-      for_each_fine_sample(c, [&](const Vec3& p) {
+    {
+      // the fine grid, with its own cache (made when a quad first needs it)
+      const bool fine_cached = !cache.fine_distance.empty();
+      for(int i = 0; i < 4; ++i) moved[i] = fine_cached ? c[i] - cache.fine_corners[i] : Vec3{0., 0., 0.};
+      thread_local std::vector<double> fine;
+      fine.resize(number_of_fine_samples);
+      int k = 0;
+      for_each_fine_sample(c, [&](const Vec3& p, const std::array<double, 4>& w) {
         if(!ok) return;
-        measured = (std::max)(measured, exact(p));
+        if(fine_cached)
+        {
+          const double most =
+            cache.fine_distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
+          if(most + m_rounding <= floor) { fine[k++] = most; return; }
+        }
+        fine[k] = exact(p);
+        measured = (std::max)(measured, fine[k++]);
         ok = measured <= bound;
       });
+      if(ok)
+      {
+        cache.fine_corners = c;
+        cache.fine_distance = fine;
+      }
+    }
     largest = (std::max)(largest, measured);
     if(ok)
     {
@@ -334,11 +357,14 @@ private:
   }
 
   /// the points of a grid of step 1/16 on each of the quad's (0, 2) triangles
-  /// (a 1/8 grid still missed fertility_gregson11's overshoot)
+  /// (a 1/8 grid still missed fertility_gregson11's overshoot), each with
+  /// its weights of the quad's corners
+  static constexpr int fine_steps = 16;
+  static constexpr int number_of_fine_samples = (fine_steps + 1) * (fine_steps + 2); // two triangles
   template <class F>
   static void for_each_fine_sample(const std::array<Vec3, 4>& c, F f)
   {
-    const int n = 16;
+    const int n = fine_steps;
     for(int t = 0; t < 2; ++t)
     {
       const Vec3& a = c[0];
@@ -346,12 +372,18 @@ private:
       const Vec3& d = c[t == 0 ? 2 : 3];
       for(int i = 0; i <= n; ++i)
         for(int j = 0; i + j <= n; ++j)
-          f(a + (double(i) / n) * (b - a) + (double(j) / n) * (d - a));
+        {
+          const double wb = double(i) / n, wd = double(j) / n;
+          const std::array<double, 4> w =
+            t == 0 ? std::array<double, 4>{1. - wb - wd, wb, wd, 0.} : std::array<double, 4>{1. - wb - wd, 0., wb, wd};
+          f(a + wb * (b - a) + wd * (d - a), w);
+        }
     }
   }
 
-  /// a quad's coarse samples' distances to the reference (at most: a sample
-  /// not measured keeps its bound) and the corners they hold for; one entry per boundary quad, written by
+  /// a quad's coarse (and fine) samples' distances to the reference (at
+  /// most: a sample not measured keeps its bound) and the corners they hold
+  /// for; one entry per boundary quad, written by
   /// the visits of its corners (never two at once: a parallel sweep moves
   /// vertices that share no hex, hence no quad)
   struct Quad_cache
@@ -359,11 +391,18 @@ private:
     bool valid = false;
     std::array<Vec3, 4> corners;
     std::array<double, number_of_coarse_samples> distance; ///< of each coarse sample
+    std::array<Vec3, 4> fine_corners;
+    std::vector<double> fine_distance; ///< of each fine sample (empty: none yet)
   };
 
   const Hex_mesh_boundary& m_boundary;
   std::vector<Vec3> m_start;
   mutable std::vector<Quad_cache> m_quad_cache;
+  /// a cached sample is skipped only this far (1e-12 of the reference's
+  /// diagonal) within the floor: a sample recomputed where it was can differ
+  /// in its last bits, and a move that the full measure would refuse by such
+  /// a tie is then refused all the same
+  double m_rounding = 0.;
   double m_dense_above2 = std::numeric_limits<double>::infinity();
   mutable std::atomic<std::size_t> m_queries{0};
   std::vector<K::Triangle_3> m_triangles;
