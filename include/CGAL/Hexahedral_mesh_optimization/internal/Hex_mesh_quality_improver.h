@@ -120,6 +120,9 @@ class Hex_mesh_quality_improver
     /// surface error of the current state (it depends on the boundary
     /// vertices only and is measured only when they moved); negative: unknown
     double current_error = -1.;
+    /// whether `current_error` may be an upper bound (`measure_error_since`)
+    /// rather than a measure: the result's error is then measured at the end
+    bool error_may_be_bound = false;
     /// what the turns and the final smoothing may take the error to
     double error_bound = 0.;
   };
@@ -152,8 +155,9 @@ public:
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
     res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
-    res.surface_error = (st.current_error >= 0. && !res.kept_input) ? st.current_error
-                                                                    : relative_surface_error(mesh, st.reference);
+    res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
+                          ? st.current_error
+                          : relative_surface_error(mesh, st.reference);
     res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
     res.seconds = seconds_since(start);
     return res;
@@ -233,6 +237,23 @@ private:
     return st.current_error;
   }
 
+  /// Measures the surface error after a change from `before`, whose error
+  /// was `error_before` (< 0: unknown, measured in full): only the quads
+  /// that moved and the reference near them are measured
+  /// (`surface_error_after_change`). The value is an upper bound, exact
+  /// whenever the error grew beyond `error_before`.
+  double measure_error_since(Run_state& st, const std::vector<Vec3>& before, double error_before) const
+  {
+    if(error_before < 0.) return measure_error(st);
+    const Normalization& nz = st.nz;
+    st.current_error =
+      surface_error_after_change(st.ts->boundary(), before, st.mesh.points, st.reference, error_before * st.diagonal,
+                                 [&nz](const Vec3& p) { return nz.undo(p); }) /
+      st.diagonal;
+    st.error_may_be_bound = true;
+    return st.current_error;
+  }
+
   /// The MSJ stages, their guard keeping a margin (`msj_guard_margin` of the
   /// tolerance, fine sampling from `msj_dense_sampling`), then the
   /// restoration at the MSJ reached. If the error measured after them is
@@ -295,7 +316,7 @@ private:
     double e = -1.;
     if(!stopped())
     {
-      e = measure_error(st);
+      e = measure_error_since(st, saved, saved_error);
       if(e <= st.error_bound) return true;
       if(restore && !stopped())
       {

@@ -36,6 +36,7 @@
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Bbox_3.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
@@ -150,6 +151,99 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
 
 /// Hausdorff distance between the boundary of `mesh` and `reference`,
 /// divided by the reference's bounding-box diagonal
+/// Adds triangle abc to `s` as a face of its own (the sub-surfaces below need
+/// no connectivity: the distance to a surface is the distance to its faces).
+inline void add_separate_triangle(Triangle_surface& s, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  typedef Triangle_surface::Point Point;
+  s.add_face(s.add_vertex(Point(a[0], a[1], a[2])), s.add_vertex(Point(b[0], b[1], b[2])),
+             s.add_vertex(Point(c[0], c[1], c[2])));
+}
+
+/// The surface error (Hausdorff distance between the boundary cut along the
+/// (0, 2) diagonals and `reference`, absolute) after the boundary vertices
+/// moved from `before` to `after`, when it was at most `error_before` at
+/// `before`: max(`error_before`, the two one-sided distances of the part
+/// that moved). Only that part is measured:
+///   - boundary -> reference: the quads with a moved corner;
+///   - reference -> boundary: the reference triangles within `error_before`
+///     of those quads as they were (a reference point whose closest point
+///     was on a quad that did not move is no further from the boundary now
+///     than `error_before`), to the whole boundary.
+/// The answer is an upper bound of the error, and exact whenever the error
+/// grew beyond `error_before`: what a check against a bound needs, at the
+/// cost of the part that moved. `to_reference_frame` maps the points to the
+/// reference's coordinates.
+template <class Map>
+double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<Vec3>& before,
+                                  const std::vector<Vec3>& after, const Triangle_surface& reference,
+                                  double error_before, const Map& to_reference_frame,
+                                  double relative_error_bound = 1e-4)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::vector<std::size_t> moved_quads;
+  for(std::size_t q = 0; q < b.quads.size(); ++q)
+    for(std::size_t v : b.quads[q])
+      if(before[v] != after[v]) { moved_quads.push_back(q); break; }
+  if(moved_quads.empty()) return error_before;
+  // the moved quads now, and the boxes around them as they were
+  Triangle_surface moved, whole, near_reference;
+  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
+  std::vector<Box> old_boxes, reference_boxes;
+  for(std::size_t q : moved_quads)
+  {
+    std::array<Vec3, 4> c, o;
+    for(int i = 0; i < 4; ++i)
+    {
+      c[i] = to_reference_frame(after[b.quads[q][i]]);
+      o[i] = to_reference_frame(before[b.quads[q][i]]);
+    }
+    add_separate_triangle(moved, c[0], c[1], c[2]);
+    add_separate_triangle(moved, c[0], c[2], c[3]);
+    double lo[3], hi[3];
+    for(int k = 0; k < 3; ++k)
+    {
+      lo[k] = (std::min)({o[0][k], o[1][k], o[2][k], o[3][k]}) - error_before;
+      hi[k] = (std::max)({o[0][k], o[1][k], o[2][k], o[3][k]}) + error_before;
+    }
+    old_boxes.push_back(Box(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), q));
+  }
+  for(auto f : reference.faces())
+  {
+    CGAL::Bbox_3 box;
+    for(auto v : CGAL::vertices_around_face(reference.halfedge(f), reference)) box += reference.point(v).bbox();
+    reference_boxes.push_back(Box(box, std::size_t(f)));
+  }
+  std::vector<char> near(reference.number_of_faces(), 0);
+  CGAL::box_intersection_d(reference_boxes.begin(), reference_boxes.end(), old_boxes.begin(), old_boxes.end(),
+                           [&](const Box& r, const Box&) { near[r.info()] = 1; });
+  for(auto f : reference.faces())
+  {
+    if(!near[std::size_t(f)]) continue;
+    std::array<Vec3, 3> t;
+    int i = 0;
+    for(auto v : CGAL::vertices_around_face(reference.halfedge(f), reference))
+    {
+      const auto& p = reference.point(v);
+      t[i++] = Vec3{p.x(), p.y(), p.z()};
+    }
+    add_separate_triangle(near_reference, t[0], t[1], t[2]);
+  }
+  std::vector<Vec3> now(after.size());
+  for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
+  boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02);
+  const double bound = relative_error_bound * diagonal(bbox_of(reference));
+  double reference_to_mesh = 0.;
+  auto other = std::async(std::launch::async, [&] {
+    return near_reference.number_of_faces() == 0
+             ? 0.
+             : PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(near_reference, whole, bound);
+  });
+  const double mesh_to_reference = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(moved, reference, bound);
+  reference_to_mesh = other.get();
+  return (std::max)({error_before, mesh_to_reference, reference_to_mesh});
+}
+
 inline double relative_surface_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference)
 {
   return surface_distance(mesh, reference).relative();
