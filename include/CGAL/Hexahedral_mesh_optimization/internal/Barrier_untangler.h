@@ -38,10 +38,13 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Local_region.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -190,78 +193,118 @@ private:
     return m;
   }
 
+  /// regions of at least this many hexes evaluate their energy on all
+  /// threads, this many hexes at a time (a merged region of a 1M-hex grid
+  /// held 570k hexes, on one thread)
+  static constexpr std::size_t parallel_energy_hexes = 4096;
+
+  /// the frame energy of region hex r (infinity when injective and a frame
+  /// is not positive) and, with `gp`, its gradient at the hex's 8 corners
+  double hex_energy(const Eigen::VectorXd& x, std::size_t r, std::array<std::array<double, 3>, 8>* gp) const
+  {
+    double p[8][3], J[9][3][3];
+    const bool injective = m_eps == 0.;
+    double e = 0.;
+    if(gp) for(auto& c : *gp) c = {0., 0., 0.};
+    corners(x, r, p);
+    frames(p, J);
+    for(int s = 0; s < 9; ++s)
+    {
+      const double (&j)[3][3] = J[s];
+      const double det = det3(j);
+      double chi, dchi;
+      if(injective)
+      {
+        if(!(det > 0.)) return std::numeric_limits<double>::infinity();
+        chi = det; dchi = 1.;
+      }
+      else
+      {
+        const double root = std::sqrt(m_eps * m_eps + det * det);
+        chi = 0.5 * (det + root);
+        dchi = 0.5 * (1. + det / root);
+      }
+      double f2 = 0.;
+      for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
+      const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
+      e += f2 * c23;
+      if(!gp) continue;
+      // cofactor matrix: d det / d J
+      double cof[3][3];
+      cof[0][0] = j[1][1] * j[2][2] - j[1][2] * j[2][1];
+      cof[0][1] = j[1][2] * j[2][0] - j[1][0] * j[2][2];
+      cof[0][2] = j[1][0] * j[2][1] - j[1][1] * j[2][0];
+      cof[1][0] = j[0][2] * j[2][1] - j[0][1] * j[2][2];
+      cof[1][1] = j[0][0] * j[2][2] - j[0][2] * j[2][0];
+      cof[1][2] = j[0][1] * j[2][0] - j[0][0] * j[2][1];
+      cof[2][0] = j[0][1] * j[1][2] - j[0][2] * j[1][1];
+      cof[2][1] = j[0][2] * j[1][0] - j[0][0] * j[1][2];
+      cof[2][2] = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+      const double a1 = 2. * c23, a2 = (2. / 3.) * f2 * c23 / chi * dchi;
+      double g[3][3];
+      for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
+      if(s < 8)
+      {
+        for(int k = 0; k < 3; ++k)
+        {
+          const int n = hex_corner_edges[s][k];
+          for(int d = 0; d < 3; ++d) { (*gp)[n][d] += g[d][k]; (*gp)[s][d] -= g[d][k]; }
+        }
+      }
+      else
+      {
+        for(int k = 0; k < 3; ++k)
+          for(int i = 0; i < 4; ++i)
+            for(int d = 0; d < 3; ++d)
+            {
+              (*gp)[hex_axis_plus[k][i]][d] += 0.25 * g[d][k];
+              (*gp)[hex_axis_minus[k][i]][d] -= 0.25 * g[d][k];
+            }
+      }
+    }
+    return e;
+  }
+
   double energy(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const
   {
     if(grad) grad->setZero(x.size());
     double e = 0.;
-    double p[8][3], J[9][3][3];
-    const bool injective = m_eps == 0.;
-    for(std::size_t r = 0; r < m_region.hexes.size(); ++r)
-    {
-      corners(x, r, p);
-      frames(p, J);
-      double gp[8][3] = {};
-      for(int s = 0; s < 9; ++s)
+    std::array<std::array<double, 3>, 8> gp;
+    auto add = [&](std::size_t r, double term, const std::array<std::array<double, 3>, 8>& g) {
+      e += term;
+      if(!grad) return;
+      for(int i = 0; i < 8; ++i)
       {
-        const double (&j)[3][3] = J[s];
-        const double det = det3(j);
-        double chi, dchi;
-        if(injective)
-        {
-          if(!(det > 0.)) return std::numeric_limits<double>::infinity();
-          chi = det; dchi = 1.;
-        }
-        else
-        {
-          const double root = std::sqrt(m_eps * m_eps + det * det);
-          chi = 0.5 * (det + root);
-          dchi = 0.5 * (1. + det / root);
-        }
-        double f2 = 0.;
-        for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
-        const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
-        e += f2 * c23;
-        if(!grad) continue;
-        // cofactor matrix: d det / d J
-        double cof[3][3];
-        cof[0][0] = j[1][1] * j[2][2] - j[1][2] * j[2][1];
-        cof[0][1] = j[1][2] * j[2][0] - j[1][0] * j[2][2];
-        cof[0][2] = j[1][0] * j[2][1] - j[1][1] * j[2][0];
-        cof[1][0] = j[0][2] * j[2][1] - j[0][1] * j[2][2];
-        cof[1][1] = j[0][0] * j[2][2] - j[0][2] * j[2][0];
-        cof[1][2] = j[0][1] * j[2][0] - j[0][0] * j[2][1];
-        cof[2][0] = j[0][1] * j[1][2] - j[0][2] * j[1][1];
-        cof[2][1] = j[0][2] * j[1][0] - j[0][0] * j[1][2];
-        cof[2][2] = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        const double a1 = 2. * c23, a2 = (2. / 3.) * f2 * c23 / chi * dchi;
-        double g[3][3];
-        for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
-        if(s < 8)
-        {
-          for(int k = 0; k < 3; ++k)
-          {
-            const int n = hex_corner_edges[s][k];
-            for(int d = 0; d < 3; ++d) { gp[n][d] += g[d][k]; gp[s][d] -= g[d][k]; }
-          }
-        }
-        else
-        {
-          for(int k = 0; k < 3; ++k)
-            for(int i = 0; i < 4; ++i)
-              for(int d = 0; d < 3; ++d)
-              {
-                gp[hex_axis_plus[k][i]][d] += 0.25 * g[d][k];
-                gp[hex_axis_minus[k][i]][d] -= 0.25 * g[d][k];
-              }
-        }
+        const int id = m_idx[r][i];
+        if(id < 0) continue;
+        for(int d = 0; d < 3; ++d) (*grad)[3 * id + d] += g[i][d];
       }
-      if(grad)
-        for(int i = 0; i < 8; ++i)
-        {
-          const int id = m_idx[r][i];
-          if(id < 0) continue;
-          for(int d = 0; d < 3; ++d) (*grad)[3 * id + d] += gp[i][d];
-        }
+    };
+    const std::size_t n = m_region.hexes.size();
+    if(n < parallel_energy_hexes)
+    {
+      // a small region, one of many run side by side: on its own thread
+      for(std::size_t r = 0; r < n; ++r)
+      {
+        add(r, hex_energy(x, r, grad ? &gp : nullptr), gp);
+        if(!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+      }
+    }
+    else
+    {
+      // in blocks: a block's hexes on all threads, then added in hex order
+      // (the same sum whatever the number of threads)
+      std::vector<double> term(parallel_energy_hexes);
+      std::vector<std::array<std::array<double, 3>, 8> > gradient(grad ? parallel_energy_hexes : 0);
+      for(std::size_t first = 0; first < n; first += parallel_energy_hexes)
+      {
+        const std::size_t count = (std::min)(parallel_energy_hexes, n - first);
+        parallel_for_each_index(count, [&](std::size_t k) {
+          term[k] = hex_energy(x, first + k, grad ? &gradient[k] : nullptr);
+        }, 256);
+        for(std::size_t k = 0; k < count; ++k) add(first + k, term[k], grad ? gradient[k] : gp);
+        if(!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+      }
     }
     // boundary energy (Eq. 6), weighted relative to the frame energy's scale
     const std::vector<Boundary_constraint>& bcs = *m_bc;
