@@ -77,6 +77,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/parallel_for_each_index.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -454,12 +455,13 @@ private:
     {
       detect_features(P, param_.smoothing_feature_angle, sharp, degree, it < masked ? &mask : nullptr);
       vertex_normals(P, normals);
-      for(std::size_t bi = 0; bi < nb; ++bi)
-      {
+      // each vertex from the previous positions only: on all threads, the
+      // same result
+      parallel_for_each_index(nb, [&](std::size_t bi) {
         Q[bi] = P[bi];
         const std::size_t d = degree[bi];
         if(d != 0 && d != 2)
-          continue; // corner: stays
+          return; // corner: stays
         Vec3 mean{0., 0., 0.};
         std::size_t count = 0;
         Vec3 ends[2];
@@ -475,7 +477,7 @@ private:
           ++count;
         }
         if(count == 0)
-          continue;
+          return;
         Vec3 L = (1. / double(count)) * mean - P[bi];
         if(d == 0) // tangential: in the tangent plane
           L = L - dot(L, normals[bi]) * normals[bi];
@@ -486,7 +488,7 @@ private:
           L = lt > 0. ? (dot(L, t) / (lt * lt)) * t : Vec3{0., 0., 0.};
         }
         Q[bi] = P[bi] + lambda * L;
-      }
+      }, 256);
       if(param_.project_every_iteration || it + 1 == iters)
       {
         // each query starts from the vertex's last projection (a point of
@@ -494,11 +496,10 @@ private:
         // nearest-neighbour search and with a tight radius from the start
         // (the smoothing moves a vertex by a fraction of an edge)
         const bool hinted = last_projection.size() == nb;
-        for(std::size_t bi = 0; bi < nb; ++bi)
-        {
+        parallel_for_each_index(nb, [&](std::size_t bi) {
           if(hinted) Q[bi] = closest_on_reference_from(Q[bi], last_projection[bi]);
           else closest_on_reference(Q[bi], Q[bi]);
-        }
+        }, 256);
         last_projection = Q;
       }
       std::swap(P, Q);
