@@ -8,6 +8,7 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/face_groups.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 #include <CGAL/Kernel_traits.h>
 
@@ -19,7 +20,6 @@
 #include <limits>
 #include <sstream>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace CGAL {
@@ -138,17 +138,6 @@ private:
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 
-struct Sorted_face_hash
-{
-  std::size_t operator()(const std::array<std::size_t, 4>& f) const
-  {
-    std::size_t h = 0;
-    for(std::size_t v : f)
-      h = (h ^ std::hash<std::size_t>()(v)) * 0x9E3779B97F4A7C15ull + (h >> 29);
-    return h;
-  }
-};
-
 template <class Element, class Ref>
 bool check_reference_count(const std::vector<Element>& elements, const std::vector<Ref>& refs,
                            Hex_mesh_defect::Section section, Hex_mesh_defect& d)
@@ -200,31 +189,28 @@ inline bool check_index_range(const std::vector<std::size_t>& elements, std::siz
 template <class Hexahedra>
 bool check_manifold_faces(const Hexahedra& hexes, Hex_mesh_defect& d)
 {
-  typedef std::array<std::size_t, 4> Face;
+  // the first hexahedron, in index order, whose face two others already
+  // have: over the groups of equal faces (face_groups.h), the smallest
+  // third face id
+  std::size_t vertices = 0;
+  for(const auto& h : hexes)
+    for(std::size_t v : h) vertices = (std::max)(vertices, std::size_t(v) + 1);
   const std::size_t none = (std::numeric_limits<std::size_t>::max)();
-  std::unordered_map<Face, std::array<std::size_t, 2>, Sorted_face_hash> owners;
-  owners.reserve(4 * hexes.size());
-  for(std::size_t h = 0; h < hexes.size(); ++h)
-    for(const auto& local : hex_faces)
-    {
-      Face f = {{hexes[h][local[0]], hexes[h][local[1]], hexes[h][local[2]], hexes[h][local[3]]}};
-      std::sort(f.begin(), f.end());
-      auto ins = owners.emplace(f, std::array<std::size_t, 2>{{h, none}});
-      if(ins.second)
-        continue;
-      std::array<std::size_t, 2>& o = ins.first->second;
-      if(o[1] == none)
-      {
-        o[1] = h;
-        continue;
-      }
-      d.kind = Hex_mesh_defect::NON_MANIFOLD_FACE;
-      d.section = Hex_mesh_defect::HEXAHEDRA;
-      d.record = h;
-      d.face = f;
-      d.other_records = o;
-      return false;
-    }
+  std::size_t third = none;
+  for_each_face_group(hexes, vertices, [&](const std::array<std::size_t, 4>& key, const std::size_t* ids,
+                                           std::size_t count) {
+    if(count < 3 || ids[2] >= third) return;
+    third = ids[2];
+    d.face = key;
+    d.other_records = {{ids[0] / 6, ids[1] / 6}};
+  });
+  if(third != none)
+  {
+    d.kind = Hex_mesh_defect::NON_MANIFOLD_FACE;
+    d.section = Hex_mesh_defect::HEXAHEDRA;
+    d.record = third / 6;
+    return false;
+  }
   return true;
 }
 
@@ -247,7 +233,8 @@ The checks, in this order:
 - every quadrilateral face is shared by at most two hexahedra (the volume is
   a manifold).
 
-The cost is linear in the size of the mesh (a hash map of the faces).
+The cost is linear in the size of the mesh (the faces are bucketed by their
+smallest vertex).
 
 \tparam Point a model of `Kernel::Point_3`
 \param mesh the mesh to check

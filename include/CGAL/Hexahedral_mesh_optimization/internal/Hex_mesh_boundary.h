@@ -29,6 +29,7 @@
 //   hexahedron). The orientation is combinatorial, so it stays consistent
 //   over a tangled mesh as long as the hexes are consistently numbered.
 
+#include <CGAL/Hexahedral_mesh_optimization/internal/face_groups.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
@@ -144,58 +145,12 @@ inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
   const std::size_t npos = Hex_mesh_boundary::npos;
   Hex_mesh_boundary b;
 
-  // ---- faces occurring once: the faces are bucketed by their smallest
-  // vertex (a counting sort), then matched within each bucket (a few faces):
-  // one global sort of the 6 n faces took most of the set-up of a 1M-hex mesh
-  struct Face_key
-  {
-    Quad key;
-    std::size_t id; // 6 * hex + local face
-    bool operator<(const Face_key& o) const { return key < o.key; }
-  };
-  const std::size_t nf = 6 * hexes.size();
-  auto smallest_vertex = [&](std::size_t id) {
-    const Hex& h = hexes[id / 6];
-    const int f = int(id % 6);
-    std::size_t m = h[hex_faces[f][0]];
-    for(int i = 1; i < 4; ++i) m = (std::min)(m, std::size_t(h[hex_faces[f][i]]));
-    return m;
-  };
-  std::vector<std::size_t> offset(number_of_vertices + 1, 0);
-  for(std::size_t id = 0; id < nf; ++id) ++offset[smallest_vertex(id) + 1];
-  for(std::size_t v = 0; v < number_of_vertices; ++v) offset[v + 1] += offset[v];
-  std::vector<std::size_t> bucketed(nf);
-  {
-    std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
-    for(std::size_t id = 0; id < nf; ++id) bucketed[next[smallest_vertex(id)]++] = id;
-  }
+  // ---- faces occurring once (face_groups.h)
   std::vector<std::size_t> boundary_face_ids;
-  std::vector<Face_key> faces;
-  for(std::size_t v = 0; v < number_of_vertices; ++v)
-  {
-    faces.clear();
-    for(std::size_t k = offset[v]; k < offset[v + 1]; ++k)
-    {
-      Face_key fk;
-      const std::size_t id = bucketed[k];
-      for(int i = 0; i < 4; ++i) fk.key[i] = hexes[id / 6][hex_faces[id % 6][i]];
-      std::sort(fk.key.begin(), fk.key.end());
-      fk.id = id;
-      faces.push_back(fk);
-    }
-    std::sort(faces.begin(), faces.end());
-    for(std::size_t i = 0; i < faces.size();)
-    {
-      std::size_t j = i + 1;
-      while(j < faces.size() && faces[j].key == faces[i].key)
-        ++j;
-      if(j - i == 1)
-        boundary_face_ids.push_back(faces[i].id);
-      else if(j - i > 2)
-        ++b.number_of_overshared_faces;
-      i = j;
-    }
-  }
+  for_each_face_group(hexes, number_of_vertices, [&](const Quad&, const std::size_t* ids, std::size_t count) {
+    if(count == 1) boundary_face_ids.push_back(ids[0]);
+    else if(count > 2) ++b.number_of_overshared_faces;
+  });
   std::sort(boundary_face_ids.begin(), boundary_face_ids.end());
 
   const std::size_t nq = boundary_face_ids.size();
