@@ -426,16 +426,21 @@ private:
     return {q.x(), q.y(), q.z()};
   }
 
+  /// Ω_t (Section 3.1): the boundary smoothed along its surface and its
+  /// feature lines, projected onto the reference; then its classification,
+  /// feature lines and outward normals
   void compute_target(const std::vector<Vec3>& mesh_points)
   {
-    const std::size_t nb = boundary_.vertices.size();
-    std::vector<Vec3> P(nb), Q(nb), normals;
-    for(std::size_t i = 0; i < nb; ++i)
-      P[i] = mesh_points[boundary_.vertices[i]];
+    omega_ = smoothed_boundary(mesh_points);
+    classify_target(mesh_points);
+    orient_target();
+  }
 
-    // vertices of folded boundary quads: their "features" are not trusted
-    // while the smoothing starts
-    std::vector<unsigned char> mask(nb, 0);
+  /// the vertices of folded boundary quads: their "features" are not
+  /// trusted while the smoothing starts
+  std::vector<unsigned char> folded_quad_vertices(const std::vector<Vec3>& P) const
+  {
+    std::vector<unsigned char> mask(boundary_.vertices.size(), 0);
     for(const auto& q : boundary_.quads)
     {
       const std::size_t c[4] = {bidx(q[0]), bidx(q[1]), bidx(q[2]), bidx(q[3])};
@@ -443,52 +448,67 @@ private:
         for(std::size_t v : c)
           mask[v] = 1;
     }
+    return mask;
+  }
 
+  /// one smoothing step of boundary vertex bi (Q[bi] from the positions P):
+  /// a regular vertex toward the mean of its neighbours in its tangent
+  /// plane, a vertex of a feature line along the line, a corner stays
+  Vec3 smoothing_step(const std::vector<Vec3>& P, std::size_t bi, const std::vector<unsigned char>& sharp,
+                      const std::vector<std::size_t>& degree, const std::vector<Vec3>& normals) const
+  {
+    const std::size_t d = degree[bi];
+    if(d != 0 && d != 2)
+      return P[bi]; // corner: stays
+    Vec3 mean{0., 0., 0.};
+    std::size_t count = 0;
+    Vec3 ends[2];
+    const auto er = boundary_.edges_of(bi);
+    for(const std::size_t* e = er.first; e != er.second; ++e)
+    {
+      if(d == 2 && !sharp[*e])
+        continue;
+      const Vec3& x = P[bidx(boundary_.opposite(*e, boundary_.vertices[bi]))];
+      if(d == 2)
+        ends[count] = x;
+      mean = mean + x;
+      ++count;
+    }
+    if(count == 0)
+      return P[bi];
+    Vec3 L = (1. / double(count)) * mean - P[bi];
+    if(d == 0) // tangential: in the tangent plane
+      L = L - dot(L, normals[bi]) * normals[bi];
+    else // along the feature line: its chord direction at the vertex
+    {
+      Vec3 t = ends[1] - ends[0];
+      const double lt = norm(t);
+      L = lt > 0. ? (dot(L, t) / (lt * lt)) * t : Vec3{0., 0., 0.};
+    }
+    return P[bi] + param_.smoothing_step * L;
+  }
+
+  /// the boundary after `smoothing_iterations` smoothing steps, each vertex
+  /// from the previous positions only (on all threads, the same result),
+  /// projected onto the reference
+  std::vector<Vec3> smoothed_boundary(const std::vector<Vec3>& mesh_points) const
+  {
+    const std::size_t nb = boundary_.vertices.size();
+    std::vector<Vec3> P(nb), Q(nb), normals;
+    for(std::size_t i = 0; i < nb; ++i)
+      P[i] = mesh_points[boundary_.vertices[i]];
+    const std::vector<unsigned char> mask = folded_quad_vertices(P);
     const unsigned int iters = param_.smoothing_iterations;
     const unsigned int masked = (std::min)(iters,
       static_cast<unsigned int>(std::lround(param_.masked_fraction * iters)));
     std::vector<unsigned char> sharp;
     std::vector<std::size_t> degree;
     std::vector<Vec3> last_projection;
-    const double lambda = param_.smoothing_step;
     for(unsigned int it = 0; it < iters; ++it)
     {
       detect_features(P, param_.smoothing_feature_angle, sharp, degree, it < masked ? &mask : nullptr);
       vertex_normals(P, normals);
-      // each vertex from the previous positions only: on all threads, the
-      // same result
-      parallel_for_each_index(nb, [&](std::size_t bi) {
-        Q[bi] = P[bi];
-        const std::size_t d = degree[bi];
-        if(d != 0 && d != 2)
-          return; // corner: stays
-        Vec3 mean{0., 0., 0.};
-        std::size_t count = 0;
-        Vec3 ends[2];
-        const auto er = boundary_.edges_of(bi);
-        for(const std::size_t* e = er.first; e != er.second; ++e)
-        {
-          if(d == 2 && !sharp[*e])
-            continue;
-          const Vec3& x = P[bidx(boundary_.opposite(*e, boundary_.vertices[bi]))];
-          if(d == 2)
-            ends[count] = x;
-          mean = mean + x;
-          ++count;
-        }
-        if(count == 0)
-          return;
-        Vec3 L = (1. / double(count)) * mean - P[bi];
-        if(d == 0) // tangential: in the tangent plane
-          L = L - dot(L, normals[bi]) * normals[bi];
-        else // along the feature line: its chord direction at the vertex
-        {
-          Vec3 t = ends[1] - ends[0];
-          const double lt = norm(t);
-          L = lt > 0. ? (dot(L, t) / (lt * lt)) * t : Vec3{0., 0., 0.};
-        }
-        Q[bi] = P[bi] + lambda * L;
-      }, 256);
+      parallel_for_each_index(nb, [&](std::size_t bi) { Q[bi] = smoothing_step(P, bi, sharp, degree, normals); }, 256);
       if(param_.project_every_iteration || it + 1 == iters)
       {
         // each query starts from the vertex's last projection (a point of
@@ -507,9 +527,15 @@ private:
     if(iters == 0)
       for(std::size_t bi = 0; bi < nb; ++bi)
         closest_on_reference(P[bi], P[bi]);
-    omega_ = P;
+    return P;
+  }
 
-    // classification of Ω_t
+  /// the classes of Ω_t's vertices (regular, sharp, corner), its corners
+  /// put back, and its feature lines
+  void classify_target(const std::vector<Vec3>& mesh_points)
+  {
+    const std::size_t nb = boundary_.vertices.size();
+    std::vector<std::size_t> degree;
     detect_features(omega_, param_.feature_angle, sharp_edge_, degree);
     classes_.assign(n_vertices_, Vertex_class::interior);
     for(std::size_t bi = 0; bi < nb; ++bi)
@@ -539,9 +565,13 @@ private:
           place_on_line_[fl.vertices[i]] = i;
         }
     }
+  }
 
-    // outward normals of Ω_t: the quads are outward for positive hexes; if
-    // the enclosed signed volume is negative, the numbering is mirrored
+  /// outward normals of Ω_t (the quads are outward for positive hexes; if
+  /// the enclosed signed volume is negative, the numbering is mirrored) and
+  /// its mean edge length
+  void orient_target()
+  {
     vertex_normals(omega_, outward_);
     double volume = 0.;
     for(const auto& q : boundary_.quads)
