@@ -9,7 +9,8 @@
 // focused pass moves only vertices near the worst hexes; the parallel
 // (coloured) passes give the same result on one thread as on all of them
 // and keep the floor; the start-deviation shortcut spares most calls to the
-// surface guard and keeps the surface error within its bound. With the
+// surface guard and keeps the surface error within its bound; the guard's
+// early-stopping test and caches answer as its full measure. With the
 // shared data, a real mesh gains ASJ without losing MSJ.
 
 #include "test_meshes.h"
@@ -358,6 +359,63 @@ void test_shortcut()
   HMO_CHECK(err < 2e-3); // sample-based bound of 1e-3
 }
 
+// The surface guard's shortcuts (the bound test that stops early, and the
+// per-quad caches of the sample distances skipped by the Lipschitz bound)
+// give the answers of the full measure: along a random walk of boundary
+// moves, `allows` agrees with `local_deviations(...).within(bound)` and
+// `bound_at` with `local_deviations(...).bound(t)`, measured by a second
+// guard that only ever measures in full. The fine grid is on from a fifth of
+// the tolerance, so that both caches are used.
+void test_guard_answers()
+{
+  using HMO::internal::operator*;
+  using HMO::internal::operator+;
+  const Hex_mesh_arrays in = perturbed_shell(4, 8, 4, 0.3, 11);
+  const Target_surface target(in);
+  std::vector<Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::triangulate_boundary(target.boundary(), in.points, HMO::internal::Quad_split::diagonal_02, ref_points,
+                                      ref_tris);
+  HMO::internal::Surface_guard guard(target.boundary(), ref_points, ref_tris, in.points);
+  HMO::internal::Surface_guard oracle(target.boundary(), ref_points, ref_tris, in.points);
+  const double diag = bbox_diagonal(in.points);
+  const double tol = 2e-3 * diag;
+  guard.set_dense_sampling_above(0.2 * tol);
+  oracle.set_dense_sampling_above(0.2 * tol);
+  const std::vector<std::size_t>& bv = target.boundary().vertices;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::size_t> pick(0, bv.size() - 1);
+  std::normal_distribution<double> step(0., 1.);
+  std::vector<Vec3> p = in.points;
+  std::size_t agreed = 0, allowed = 0, refused = 0, ties = 0, bound_mismatches = 0;
+  for(int trial = 0; trial < 3000; ++trial)
+  {
+    const std::size_t v = bv[pick(rng)];
+    // moves of up to a few tolerances, mostly small
+    const double size = (trial % 3 == 0 ? 3. : 0.3) * tol;
+    const Vec3 x = p[v] + size * Vec3{step(rng), step(rng), step(rng)};
+    const HMO::internal::Surface_deviation exact_bound = oracle.local_deviations(p, v, p[v]).bound(tol);
+    const HMO::internal::Surface_deviation b = guard.bound_at(p, v, p[v], tol);
+    if(std::abs(b.to_reference - exact_bound.to_reference) > 1e-12 * diag ||
+       std::abs(b.from_reference - exact_bound.from_reference) > 1e-12 * diag)
+      ++bound_mismatches;
+    const HMO::internal::Surface_deviation d = oracle.local_deviations(p, v, x);
+    const bool exact = d.within(exact_bound);
+    const bool near_tie = std::abs(d.to_reference - exact_bound.to_reference) < 1e-12 * diag ||
+                          std::abs(d.from_reference - exact_bound.from_reference) < 1e-12 * diag;
+    const bool answer = guard.allows(p, v, x, exact_bound);
+    if(near_tie) ++ties;
+    else if(answer == exact) ++agreed;
+    (exact ? allowed : refused) += 1;
+    if(exact && trial % 2 == 0) p[v] = x; // walk on
+  }
+  std::cout << "guard answers: " << agreed << " of " << 3000 - ties << " agree (" << ties << " ties), " << allowed
+            << " allowed, " << refused << " refused, " << bound_mismatches << " bound mismatches" << std::endl;
+  HMO_CHECK(agreed == 3000 - ties);
+  HMO_CHECK(bound_mismatches == 0);
+  HMO_CHECK(allowed > 300 && refused > 300); // both answers exercised
+}
+
 void test_shared_mesh()
 {
   const std::string dir = hmo_test::shared_data_dir();
@@ -397,6 +455,7 @@ int main(int, char** argv)
   test_curved();
   test_parallel();
   test_shortcut();
+  test_guard_answers();
   test_shared_mesh();
   return hmo_test::report(argv[0]);
 }
