@@ -31,6 +31,15 @@
 // beyond the tolerance, and nothing can fix it) was free to take its quads
 // off the reference up to that distance: cap_in's error doubled (0.006 →
 // 0.0103) in one max-min stage.
+// Cost: a stage asks whether a move stays within a bound far more often
+// than it needs the deviation itself, so `allows` stops at the first sample
+// beyond the bound, and `bound_at` measures exactly only what exceeds the
+// tolerance. Each boundary quad caches its samples' distances to the
+// reference with the corners they were measured at; the distance is
+// 1-Lipschitz and a sample is a convex combination of the corners, so a
+// sample whose cached distance plus how far it moved is within the bound
+// needs no query. The answers are those of the full measure (tested in
+// test_asj_smoothing); the figures are in the manual.
 // The reference is the surface the error is measured against (the input's
 // boundary cut along (0, 2), or the user's reference surface), not the
 // target surface's both-diagonal soup: on a warped quad the two differ by
