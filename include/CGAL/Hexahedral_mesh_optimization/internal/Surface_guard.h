@@ -221,13 +221,23 @@ private:
       return std::sqrt(CGAL::squared_distance(x, hint));
     };
     double measured = 0.; // the largest distance measured exactly
+    // the same corners as a measure of every sample: its distances as they are
+    const bool unchanged = cached && cache.exact && c == cache.corners;
+    bool all_measured = true;
     for(int k = 0; k < number_of_coarse_samples; ++k)
     {
       const double* w = coarse_sample_weights[k];
+      if(unchanged)
+      {
+        distance[k] = cache.distance[k];
+        measured = (std::max)(measured, distance[k]);
+        if(!(measured <= bound)) { largest = (std::max)(largest, measured); return false; }
+        continue;
+      }
       if(cached)
       {
         const double most = cache.distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
-        if(most + m_rounding <= skip_below) { distance[k] = most; continue; }
+        if(most + m_rounding <= skip_below) { distance[k] = most; all_measured = false; continue; }
       }
       distance[k] = exact(coarse_sample(c, k));
       measured = (std::max)(measured, distance[k]);
@@ -238,32 +248,43 @@ private:
     {
       // the fine grid, with its own cache (made when a quad first needs it)
       const bool fine_cached = !cache.fine_distance.empty();
+      const bool fine_unchanged = fine_cached && cache.fine_exact && c == cache.fine_corners;
       for(int i = 0; i < 4; ++i) moved[i] = fine_cached ? c[i] - cache.fine_corners[i] : Vec3{0., 0., 0.};
       thread_local std::vector<double> fine;
       fine.resize(number_of_fine_samples);
       int k = 0;
+      bool all_fine_measured = true;
       for_each_fine_sample(c, [&](const Vec3& p, const std::array<double, 4>& w) {
         if(!ok) return;
+        if(fine_unchanged)
+        {
+          fine[k] = cache.fine_distance[k];
+          measured = (std::max)(measured, fine[k++]);
+          ok = measured <= bound;
+          return;
+        }
         if(fine_cached)
         {
           const double most =
             cache.fine_distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
-          if(most + m_rounding <= floor) { fine[k++] = most; return; }
+          if(most + m_rounding <= floor) { fine[k++] = most; all_fine_measured = false; return; }
         }
         fine[k] = exact(p);
         measured = (std::max)(measured, fine[k++]);
         ok = measured <= bound;
       });
-      if(ok)
+      if(ok && !fine_unchanged)
       {
         cache.fine_corners = c;
         cache.fine_distance = fine;
+        cache.fine_exact = all_fine_measured;
       }
     }
     largest = (std::max)(largest, measured);
-    if(ok)
+    if(ok && !unchanged)
     {
       cache.valid = true;
+      cache.exact = all_measured;
       cache.corners = c;
       cache.distance = distance;
     }
@@ -401,6 +422,8 @@ private:
   struct Quad_cache
   {
     bool valid = false;
+    bool exact = false;      ///< every coarse sample measured at `corners`
+    bool fine_exact = false; ///< every fine sample measured at `fine_corners`
     std::array<Vec3, 4> corners;
     std::array<double, number_of_coarse_samples> distance; ///< of each coarse sample
     std::array<Vec3, 4> fine_corners;
