@@ -159,6 +159,49 @@ public:
   std::size_t number_of_queries() const { return m_queries.load(); }
 
 private:
+  /// one sample set's distances to the reference (at most: a sample not
+  /// measured keeps its bound) and the corners they hold for
+  struct Sample_cache
+  {
+    bool exact = false;           ///< every sample measured at `corners`
+    std::array<Vec3, 4> corners;
+    std::vector<double> distance; ///< of each sample (empty: none yet)
+
+    void keep(const std::array<Vec3, 4>& c, const std::vector<double>& d, bool all_exact)
+    {
+      corners = c;
+      distance = d;
+      exact = all_exact;
+    }
+  };
+
+  /// one entry per boundary quad (the fine samples' made when the quad
+  /// first needs them), written by the visits of its corners (never two at
+  /// once: a parallel sweep moves vertices that share no hex, hence no quad)
+  struct Quad_cache
+  {
+    Sample_cache coarse, fine;
+  };
+
+  /// closest-point queries along a sequence of samples, each starting from
+  /// the closest point of the previous one (the samples come in order along
+  /// the quad): the tree then prunes with a tight radius from the start (the
+  /// same distances; see the manual)
+  struct Hinted_query
+  {
+    explicit Hinted_query(const Tree& t) : tree(t) {}
+    const Tree& tree;
+    bool have_hint = false;
+    K::Point_3 hint;
+    double operator()(const Vec3& p)
+    {
+      const K::Point_3 x = point(p);
+      hint = have_hint ? tree.closest_point(x, hint) : tree.closest_point(x);
+      have_hint = true;
+      return std::sqrt(CGAL::squared_distance(x, hint));
+    }
+  };
+
   /// The measure of the quads around v with v at x, `d` = max(`floor`, the
   /// deviation) in each direction: what is below the floor need not be
   /// exact. With `bound`, stops with false as soon as a sample is beyond it
@@ -195,99 +238,68 @@ private:
   /// where they come near the largest deviation allowed, a fine grid too:
   /// the largest distance of a flat triangle to a curved reference can lie
   /// between the coarse samples). Returns false as soon as one is beyond
-  /// `bound`. A coarse sample whose cached distance, plus how far it moved
-  /// since, is within `floor` and below the fine-sampling threshold is not
-  /// measured (the distance to the reference is 1-Lipschitz; when one corner
-  /// moved, the samples away from it did not move at all): the answer is the
-  /// one of the full measure.
+  /// `bound`. Both sets of samples go through their cache
+  /// (`measure_samples`); a coarse sample is skipped only below the
+  /// fine-sampling threshold too, so that the fine grid is used exactly when
+  /// the full measure would use it.
   bool quad_to_reference(std::size_t q, const std::array<Vec3, 4>& c, double floor, double bound,
                          double& largest) const
   {
     Quad_cache& cache = m_quad_cache[q];
-    const bool cached = cache.valid;
+    Hinted_query query(m_tree);
+    thread_local std::vector<double> coarse, fine;
+    double measured = 0.; // the largest distance measured (or reused) exactly
+    bool coarse_exact = true, fine_exact = true;
+    auto coarse_samples = [](const std::array<Vec3, 4>& corners, auto f) { for_each_sample(corners, f); };
+    auto fine_samples = [](const std::array<Vec3, 4>& corners, auto f) { for_each_fine_sample(corners, f); };
+    bool ok = measure_samples(cache.coarse, c, coarse_samples, (std::min)(floor, std::sqrt(m_dense_above2)), bound, query,
+                              coarse, coarse_exact, measured);
+    const bool with_fine = ok && measured * measured > m_dense_above2;
+    if(with_fine) ok = measure_samples(cache.fine, c, fine_samples, floor, bound, query, fine, fine_exact, measured);
+    largest = (std::max)(largest, measured);
+    if(ok)
+    {
+      cache.coarse.keep(c, coarse, coarse_exact);
+      if(with_fine) cache.fine.keep(c, fine, fine_exact);
+    }
+    return ok;
+  }
+
+  /// The distances of one set of samples of a quad at corners c (`for_each`
+  /// calls f(point, weights of the corners) for each) into `out`, with
+  /// `cache`: at the corners of a measure of every sample, its distances as
+  /// they are; otherwise a sample whose cached distance plus how far it
+  /// moved is within `skip_below` (by `m_rounding`: a sample recomputed where
+  /// it was can differ in its last bits) keeps that bound unmeasured (the
+  /// distance is 1-Lipschitz and a sample is a convex combination of the
+  /// corners; when one corner moved, the samples away from it did not move
+  /// at all); the others are measured. Raises `measured` to the largest
+  /// exact distance, and returns false as soon as it is beyond `bound`.
+  /// `exact`: whether every distance in `out` is exact.
+  template <class For_each_sample>
+  bool measure_samples(const Sample_cache& cache, const std::array<Vec3, 4>& c, For_each_sample for_each,
+                       double skip_below, double bound, Hinted_query& query, std::vector<double>& out, bool& exact,
+                       double& measured) const
+  {
+    const bool cached = !cache.distance.empty();
+    const bool unchanged = cached && cache.exact && c == cache.corners;
     std::array<Vec3, 4> moved;
     for(int i = 0; i < 4; ++i) moved[i] = cached ? c[i] - cache.corners[i] : Vec3{0., 0., 0.};
-    const double skip_below = (std::min)(floor, std::sqrt(m_dense_above2));
-    std::array<double, number_of_coarse_samples> distance;
-    // each query starts from the closest point of the previous one (the
-    // samples come in order along the quad): the tree then prunes with a
-    // tight radius from the start (the same distances; see the manual)
-    bool have_hint = false;
-    K::Point_3 hint;
-    auto exact = [&](const Vec3& p) {
-      const K::Point_3 x = point(p);
-      hint = have_hint ? m_tree.closest_point(x, hint) : m_tree.closest_point(x);
-      have_hint = true;
-      return std::sqrt(CGAL::squared_distance(x, hint));
-    };
-    double measured = 0.; // the largest distance measured exactly
-    // the same corners as a measure of every sample: its distances as they are
-    const bool unchanged = cached && cache.exact && c == cache.corners;
-    bool all_measured = true;
-    for(int k = 0; k < number_of_coarse_samples; ++k)
-    {
-      const double* w = coarse_sample_weights[k];
-      if(unchanged)
-      {
-        distance[k] = cache.distance[k];
-        measured = (std::max)(measured, distance[k]);
-        if(!(measured <= bound)) { largest = (std::max)(largest, measured); return false; }
-        continue;
-      }
-      if(cached)
+    out.clear();
+    exact = true;
+    bool ok = true;
+    for_each(c, [&](const Vec3& p, const std::array<double, 4>& w) {
+      if(!ok) return;
+      const std::size_t k = out.size();
+      if(!unchanged && cached)
       {
         const double most = cache.distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
-        if(most + m_rounding <= skip_below) { distance[k] = most; all_measured = false; continue; }
+        if(most + m_rounding <= skip_below) { out.push_back(most); exact = false; return; }
       }
-      distance[k] = exact(coarse_sample(c, k));
-      measured = (std::max)(measured, distance[k]);
-      if(!(measured <= bound)) { largest = (std::max)(largest, measured); return false; }
-    }
-    bool ok = true;
-    if(measured * measured > m_dense_above2)
-    {
-      // the fine grid, with its own cache (made when a quad first needs it)
-      const bool fine_cached = !cache.fine_distance.empty();
-      const bool fine_unchanged = fine_cached && cache.fine_exact && c == cache.fine_corners;
-      for(int i = 0; i < 4; ++i) moved[i] = fine_cached ? c[i] - cache.fine_corners[i] : Vec3{0., 0., 0.};
-      thread_local std::vector<double> fine;
-      fine.resize(number_of_fine_samples);
-      int k = 0;
-      bool all_fine_measured = true;
-      for_each_fine_sample(c, [&](const Vec3& p, const std::array<double, 4>& w) {
-        if(!ok) return;
-        if(fine_unchanged)
-        {
-          fine[k] = cache.fine_distance[k];
-          measured = (std::max)(measured, fine[k++]);
-          ok = measured <= bound;
-          return;
-        }
-        if(fine_cached)
-        {
-          const double most =
-            cache.fine_distance[k] + norm(w[0] * moved[0] + w[1] * moved[1] + w[2] * moved[2] + w[3] * moved[3]);
-          if(most + m_rounding <= floor) { fine[k++] = most; all_fine_measured = false; return; }
-        }
-        fine[k] = exact(p);
-        measured = (std::max)(measured, fine[k++]);
-        ok = measured <= bound;
-      });
-      if(ok && !fine_unchanged)
-      {
-        cache.fine_corners = c;
-        cache.fine_distance = fine;
-        cache.fine_exact = all_fine_measured;
-      }
-    }
-    largest = (std::max)(largest, measured);
-    if(ok && !unchanged)
-    {
-      cache.valid = true;
-      cache.exact = all_measured;
-      cache.corners = c;
-      cache.distance = distance;
-    }
+      out.push_back(unchanged ? cache.distance[k] : query(p));
+      measured = (std::max)(measured, out.back());
+      ok = measured <= bound;
+    });
     return ok;
   }
 
@@ -340,7 +352,7 @@ private:
     for(std::size_t k = first; k < last && ok; ++k)
     {
       for(int i = 0; i < 4; ++i) c[i] = m_start[b.quads[b.vertex_quad_list[k]][i]];
-      for_each_sample(c, [&](const Vec3& p) {
+      for_each_sample(c, [&](const Vec3& p, const std::array<double, 4>&) {
         if(!ok) return;
         const K::Point_3 h = point(p);
         double best = std::numeric_limits<double>::max();
@@ -383,17 +395,21 @@ private:
     return (1. / 3.) * (k == 17 ? c[0] + c[1] + c[2] : c[0] + c[2] + c[3]);
   }
 
+  /// f(point, weights of the corners) for each coarse sample
   template <class F>
   static void for_each_sample(const std::array<Vec3, 4>& c, F f)
   {
-    for(int k = 0; k < number_of_coarse_samples; ++k) f(coarse_sample(c, k));
+    for(int k = 0; k < number_of_coarse_samples; ++k)
+    {
+      const double* w = coarse_sample_weights[k];
+      f(coarse_sample(c, k), std::array<double, 4>{w[0], w[1], w[2], w[3]});
+    }
   }
 
   /// the points of a grid of step 1/16 on each of the quad's (0, 2) triangles
   /// (a 1/8 grid still missed fertility_gregson11's overshoot), each with
   /// its weights of the quad's corners
   static constexpr int fine_steps = 16;
-  static constexpr int number_of_fine_samples = (fine_steps + 1) * (fine_steps + 2); // two triangles
   template <class F>
   static void for_each_fine_sample(const std::array<Vec3, 4>& c, F f)
   {
@@ -413,22 +429,6 @@ private:
         }
     }
   }
-
-  /// a quad's coarse (and fine) samples' distances to the reference (at
-  /// most: a sample not measured keeps its bound) and the corners they hold
-  /// for; one entry per boundary quad, written by
-  /// the visits of its corners (never two at once: a parallel sweep moves
-  /// vertices that share no hex, hence no quad)
-  struct Quad_cache
-  {
-    bool valid = false;
-    bool exact = false;      ///< every coarse sample measured at `corners`
-    bool fine_exact = false; ///< every fine sample measured at `fine_corners`
-    std::array<Vec3, 4> corners;
-    std::array<double, number_of_coarse_samples> distance; ///< of each coarse sample
-    std::array<Vec3, 4> fine_corners;
-    std::vector<double> fine_distance; ///< of each fine sample (empty: none yet)
-  };
 
   const Hex_mesh_boundary& m_boundary;
   std::vector<Vec3> m_start;
