@@ -483,6 +483,70 @@ void test_surface_error()
   std::remove(unknown.c_str());
 }
 
+// The culled one-sided distance agrees with CGAL's bounded-error Hausdorff
+// distance computed on all triangles: on a "roof" (a triangle spanning a
+// ridge, corners on the roof, middle far from it: a single-triangle bound is
+// loose there) and on random perturbations of a curved surface, with and
+// without a known lower value.
+void test_culled_distance()
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  const double error_bound = 1e-4;
+  auto check = [&](const HMO::Triangle_surface& from, const HMO::Triangle_surface& to, double lower) {
+    const double full = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error_bound);
+    const double culled =
+      HMO::one_sided_distance_above(HMO::surface_distance_detail::triangles_of(from), to, lower, error_bound);
+    HMO_CHECK(std::abs(culled - (std::max)(lower, full)) <= 2. * error_bound);
+    return culled;
+  };
+  // the roof: two triangles meeting at a ridge along y, 0.5 high; the flat
+  // triangle below it touches it at its three corners only
+  HMO::Triangle_surface roof, flat;
+  HMO::add_separate_triangle(roof, Vec3{-1, -1, 0}, Vec3{0, -1, 0.5}, Vec3{0, 2, 0.5});
+  HMO::add_separate_triangle(roof, Vec3{-1, -1, 0}, Vec3{0, 2, 0.5}, Vec3{-1, 2, 0});
+  HMO::add_separate_triangle(roof, Vec3{0, -1, 0.5}, Vec3{1, -1, 0}, Vec3{1, 2, 0});
+  HMO::add_separate_triangle(roof, Vec3{0, -1, 0.5}, Vec3{1, 2, 0}, Vec3{0, 2, 0.5});
+  HMO::add_separate_triangle(flat, Vec3{-1, -1, 0}, Vec3{1, -1, 0}, Vec3{0, 2, 0.5});
+  const double ridge = check(flat, roof, 0.);
+  HMO_CHECK(ridge > 0.3); // the flat triangle's middle, under the ridge
+  HMO_CHECK_CLOSE(check(flat, roof, 10.), 10., 1e-12); // nothing above a large lower value
+
+  // a quarter cylinder of radius 1 and its copies with every vertex moved
+  // by up to 0.02, both ways, with lower values 0, 0.01 and 0.03
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  auto cylinder_patch = [&](bool perturb) {
+    HMO::Triangle_surface s;
+    const int na = 24, nz = 12;
+    auto at = [&](int i, int j) {
+      const double a = 1.5707963267948966 * i / na;
+      Vec3 p{std::cos(a), std::sin(a), 2. * j / nz};
+      if(perturb) p = p + Vec3{jitter(rng), jitter(rng), jitter(rng)};
+      return p;
+    };
+    std::vector<std::vector<Vec3> > p(na + 1, std::vector<Vec3>(nz + 1));
+    for(int i = 0; i <= na; ++i)
+      for(int j = 0; j <= nz; ++j) p[i][j] = at(i, j);
+    for(int i = 0; i < na; ++i)
+      for(int j = 0; j < nz; ++j)
+      {
+        HMO::add_separate_triangle(s, p[i][j], p[i + 1][j], p[i + 1][j + 1]);
+        HMO::add_separate_triangle(s, p[i][j], p[i + 1][j + 1], p[i][j + 1]);
+      }
+    return s;
+  };
+  const HMO::Triangle_surface exact = cylinder_patch(false);
+  for(int trial = 0; trial < 3; ++trial)
+  {
+    const HMO::Triangle_surface moved = cylinder_patch(true);
+    for(double lower : {0., 0.01, 0.03})
+    {
+      check(moved, exact, lower);
+      check(exact, moved, lower);
+    }
+  }
+}
+
 void test_shared_data()
 {
   const std::string dir = hmo_test::shared_data_dir();
@@ -551,6 +615,7 @@ int main(int, char** argv)
   test_features();
   test_constraints();
   test_surface_error();
+  test_culled_distance();
   test_shared_data();
   return hmo_test::report(argv[0]);
 }

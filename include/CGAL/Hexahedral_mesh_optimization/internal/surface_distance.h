@@ -32,7 +32,11 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Bbox_3.h>
@@ -87,6 +91,96 @@ inline double diagonal(const CGAL::Bbox_3& b)
                    CGAL::square(b.zmax() - b.zmin()));
 }
 
+/// Adds triangle abc to `s` as a face of its own (the sub-surfaces below need
+/// no connectivity: the distance to a surface is the distance to its faces).
+inline void add_separate_triangle(Triangle_surface& s, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  typedef Triangle_surface::Point Point;
+  s.add_face(s.add_vertex(Point(a[0], a[1], a[2])), s.add_vertex(Point(b[0], b[1], b[2])),
+             s.add_vertex(Point(c[0], c[1], c[2])));
+}
+
+namespace surface_distance_detail {
+
+typedef CGAL::Simple_cartesian<double> Soup_kernel;
+typedef Soup_kernel::Point_3 Soup_point;
+typedef Soup_kernel::Triangle_3 Soup_triangle;
+typedef CGAL::AABB_tree<CGAL::AABB_traits<
+  Soup_kernel, CGAL::AABB_triangle_primitive<Soup_kernel, std::vector<Soup_triangle>::const_iterator> > >
+  Soup_tree;
+
+inline std::vector<Soup_triangle> triangles_of(const Triangle_surface& s)
+{
+  std::vector<Soup_triangle> t;
+  t.reserve(s.number_of_faces());
+  for(auto f : s.faces())
+  {
+    Soup_point p[3];
+    int i = 0;
+    for(auto v : CGAL::vertices_around_face(s.halfedge(f), s))
+    {
+      const auto& q = s.point(v);
+      if(i < 3) p[i] = Soup_point(q.x(), q.y(), q.z());
+      ++i;
+    }
+    t.push_back(Soup_triangle(p[0], p[1], p[2]));
+  }
+  return t;
+}
+
+} // namespace surface_distance_detail
+
+/// max(`lower`, the one-sided Hausdorff distance from the triangles `from`
+/// to the surface `to`), to `error_bound`, for a caller that only needs the
+/// distance where it exceeds `lower` (a value it knows, or 0).
+///
+/// Before CGAL's bounded-error computation, every triangle that cannot
+/// realise more than that is left out: the distance to one triangle R of
+/// `to` is convex, so a triangle T is within max over its corners of
+/// d(corner, R) of `to` everywhere; R is the triangle of `to` closest to
+/// T's centroid. The distances of the centroids themselves raise `lower`
+/// first (they are realised). On surfaces that are everywhere about as far
+/// from each other as the largest distance, CGAL's subdivision must bound
+/// every triangle; this removes all but those near the largest.
+inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
+                                       const Triangle_surface& to, double lower, double error_bound)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  using namespace surface_distance_detail;
+  if(from.empty()) return lower;
+  if(to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
+  const std::vector<Soup_triangle> to_triangles = triangles_of(to);
+  Soup_tree tree(to_triangles.begin(), to_triangles.end());
+  tree.accelerate_distance_queries();
+  std::vector<double> upper(from.size());
+  double lower2 = lower * lower;
+  for(std::size_t i = 0; i < from.size(); ++i)
+  {
+    const Soup_triangle& t = from[i];
+    const Soup_point c = CGAL::centroid(t);
+    const auto hit = tree.closest_point_and_primitive(c);
+    lower2 = (std::max)(lower2, CGAL::squared_distance(c, hit.first));
+    double u = 0.;
+    for(int k = 0; k < 3; ++k) u = (std::max)(u, CGAL::squared_distance(t.vertex(k), *hit.second));
+    upper[i] = u;
+  }
+  // within `error_bound` of the realised distance: cannot change the answer
+  // beyond the precision asked for
+  const double realised = std::sqrt(lower2);
+  const double cull2 = (realised + error_bound) * (realised + error_bound);
+  Triangle_surface rest;
+  for(std::size_t i = 0; i < from.size(); ++i)
+  {
+    if(upper[i] <= cull2) continue;
+    const Soup_triangle& t = from[i];
+    Vec3 p[3];
+    for(int k = 0; k < 3; ++k) p[k] = Vec3{t.vertex(k).x(), t.vertex(k).y(), t.vertex(k).z()};
+    add_separate_triangle(rest, p[0], p[1], p[2]);
+  }
+  if(rest.number_of_faces() == 0) return realised;
+  return (std::max)(realised, PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(rest, to, error_bound));
+}
+
 /// Distances between two triangle surfaces; `relative_error_bound` × the
 /// reference diagonal bounds the error of each one-sided distance. Returns
 /// infinite distances when exactly one surface is empty.
@@ -114,9 +208,9 @@ inline Surface_distance surface_distance(const Triangle_surface& mesh,
   // the two directions at once (CGAL's Parallel_tag needs METIS as well);
   // each only reads both surfaces
   auto other = std::async(std::launch::async, [&] {
-    return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(reference, mesh, bound);
+    return one_sided_distance_above(surface_distance_detail::triangles_of(reference), mesh, 0., bound);
   });
-  d.mesh_to_reference = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(mesh, reference, bound);
+  d.mesh_to_reference = one_sided_distance_above(surface_distance_detail::triangles_of(mesh), reference, 0., bound);
   d.reference_to_mesh = other.get();
   return d;
 }
@@ -149,16 +243,6 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
   return surface_distance(s, r, relative_error_bound);
 }
 
-/// Hausdorff distance between the boundary of `mesh` and `reference`,
-/// divided by the reference's bounding-box diagonal
-/// Adds triangle abc to `s` as a face of its own (the sub-surfaces below need
-/// no connectivity: the distance to a surface is the distance to its faces).
-inline void add_separate_triangle(Triangle_surface& s, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-  typedef Triangle_surface::Point Point;
-  s.add_face(s.add_vertex(Point(a[0], a[1], a[2])), s.add_vertex(Point(b[0], b[1], b[2])),
-             s.add_vertex(Point(c[0], c[1], c[2])));
-}
 
 /// The surface error (Hausdorff distance between the boundary cut along the
 /// (0, 2) diagonals and `reference`, absolute) after the boundary vertices
@@ -180,14 +264,17 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
                                   double error_before, const Map& to_reference_frame,
                                   double relative_error_bound = 1e-4)
 {
-  namespace PMP = CGAL::Polygon_mesh_processing;
+  using surface_distance_detail::Soup_point;
+  using surface_distance_detail::Soup_triangle;
   std::vector<std::size_t> moved_quads;
   for(std::size_t q = 0; q < b.quads.size(); ++q)
     for(std::size_t v : b.quads[q])
       if(before[v] != after[v]) { moved_quads.push_back(q); break; }
   if(moved_quads.empty()) return error_before;
   // the moved quads now, and the boxes around them as they were
-  Triangle_surface moved, whole, near_reference;
+  Triangle_surface whole;
+  std::vector<Soup_triangle> moved, near_reference;
+  auto point = [](const Vec3& p) { return Soup_point(p[0], p[1], p[2]); };
   typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
   std::vector<Box> old_boxes, reference_boxes;
   for(std::size_t q : moved_quads)
@@ -198,8 +285,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
       c[i] = to_reference_frame(after[b.quads[q][i]]);
       o[i] = to_reference_frame(before[b.quads[q][i]]);
     }
-    add_separate_triangle(moved, c[0], c[1], c[2]);
-    add_separate_triangle(moved, c[0], c[2], c[3]);
+    moved.push_back(Soup_triangle(point(c[0]), point(c[1]), point(c[2])));
+    moved.push_back(Soup_triangle(point(c[0]), point(c[2]), point(c[3])));
     double lo[3], hi[3];
     for(int k = 0; k < 3; ++k)
     {
@@ -227,21 +314,17 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
       const auto& p = reference.point(v);
       t[i++] = Vec3{p.x(), p.y(), p.z()};
     }
-    add_separate_triangle(near_reference, t[0], t[1], t[2]);
+    near_reference.push_back(Soup_triangle(point(t[0]), point(t[1]), point(t[2])));
   }
   std::vector<Vec3> now(after.size());
   for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
   boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02);
   const double bound = relative_error_bound * diagonal(bbox_of(reference));
-  double reference_to_mesh = 0.;
   auto other = std::async(std::launch::async, [&] {
-    return near_reference.number_of_faces() == 0
-             ? 0.
-             : PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(near_reference, whole, bound);
+    return one_sided_distance_above(near_reference, whole, error_before, bound);
   });
-  const double mesh_to_reference = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(moved, reference, bound);
-  reference_to_mesh = other.get();
-  return (std::max)({error_before, mesh_to_reference, reference_to_mesh});
+  const double mesh_to_reference = one_sided_distance_above(moved, reference, error_before, bound);
+  return (std::max)(mesh_to_reference, other.get());
 }
 
 inline double relative_surface_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference)
