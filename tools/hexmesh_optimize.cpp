@@ -197,6 +197,18 @@ int main(int argc, char** argv)
       std::string why;
       if(!CGAL::IO::read_reference_surface(options.reference, reference, &why))
         return fail(why);
+      // before anything else: a reference in another frame, or of another
+      // object, is a bad argument (exit status 2, no output)
+      const CGAL::Hexahedral_mesh_optimization::Reference_fit fit = CGAL::hex_mesh_reference_fit(
+        mesh, reference, CGAL::hex_mesh_parameters::surface_tolerance(options.surface_tolerance));
+      if(fit.verdict == CGAL::Hexahedral_mesh_optimization::Reference_fit::mismatched)
+      {
+        std::cerr << program << ": error: reference surface '" << options.reference << "' and mesh '"
+                  << options.input << "': " << fit.message << std::endl;
+        return 2;
+      }
+      if(fit.verdict == CGAL::Hexahedral_mesh_optimization::Reference_fit::distant)
+        std::cerr << "warning: reference surface '" << options.reference << "': " << fit.message << std::endl;
     }
 
     Mesh_report before;
@@ -232,6 +244,7 @@ int main(int argc, char** argv)
       // the reference's bounding box, as the optimiser measured it
       after.surface_error = r.surface_error;
       after.time_limit_reached = r.time_limit_reached;
+      after.warnings = r.warnings;
 
       CGAL::IO::Hex_mesh_fields fields;
       if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))

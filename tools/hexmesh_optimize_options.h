@@ -171,7 +171,8 @@ inline std::string usage()
   s << "  -h, --help                  print this help and exit\n"
        "\n"
        "exit status: 0 success, 1 the mesh could not be read, processed or written,\n"
-       "2 bad command line, 3 --check failed (the output is written all the same)\n";
+       "2 bad command line or a --reference that does not fit the mesh (another frame or\n"
+       "object; nothing is written), 3 --check failed (the output is written all the same)\n";
   return s.str();
 }
 

@@ -39,6 +39,8 @@ struct Mesh_report
   double surface_error = -1.;
   /// output: whether the --time-limit hard stop fired during the optimisation
   bool time_limit_reached = false;
+  /// output: the optimisation's warnings (`Optimization_result::warnings`)
+  std::vector<std::string> warnings;
 };
 
 inline std::string format_fixed(double v, int decimals)
@@ -191,6 +193,9 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
   {
     s << ",\n" << in << "\"surface_error\": " << (r.surface_error >= 0. ? json_number(r.surface_error) : "null");
     s << ",\n" << in << "\"time_limit_reached\": " << (r.time_limit_reached ? "true" : "false");
+    s << ",\n" << in << "\"warnings\": [";
+    for(std::size_t i = 0; i < r.warnings.size(); ++i) s << (i ? ", " : "") << json_string(r.warnings[i]);
+    s << "]";
   }
   s << "\n" << indent << "}";
   return s.str();

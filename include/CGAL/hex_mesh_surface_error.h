@@ -9,7 +9,9 @@
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/reference_fit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
@@ -106,6 +108,62 @@ hex_mesh_surface_distance(const Indexed_hex_mesh<Point_3>& mesh,
   HMO::Triangle_surface ref;
   HMO::face_graph_to_triangle_surface(reference, np2, ref);
   return HMO::surface_distance(HMO::hex_mesh_to_arrays(mesh, np1), ref);
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+
+\brief tells whether the triangle mesh `reference` fits the boundary of the
+hexahedral mesh `mesh` as its reference surface: the test that
+`untangle_hex_mesh()`, `improve_hex_mesh_quality()` and `optimize_hex_mesh()`
+make before they move anything (see `Hexahedral_mesh_optimization::Reference_fit`
+for the verdicts and what is measured).
+
+\tparam Point_3 the point type of the hexahedral mesh
+\tparam TriangleMesh a model of `FaceListGraph`; faces of degree larger than 3
+        are cut into fans
+
+\param mesh the hexahedral mesh
+\param reference the reference surface
+\param np1 optional named parameters for `mesh`:
+\cgalNamedParamsBegin
+  \cgalParamNBegin{surface_tolerance}
+    \cgalParamDescription{distance, relative to the reference's bounding-box diagonal, beyond which a vertex makes the reference `distant`}
+    \cgalParamType{`double`}
+    \cgalParamDefault{0.005}
+  \cgalParamNEnd
+  \cgalParamNBegin{geom_traits}
+    \cgalParamDescription{an instance of a geometric traits class}
+    \cgalParamType{a model of `Kernel` whose `Point_3` is `Point_3`}
+    \cgalParamDefault{`Kernel_traits<Point_3>::%Kernel`}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
+\param np2 optional named parameters for `reference`: `vertex_point_map`
+       and `geom_traits`, as in `CGAL::Polygon_mesh_processing`
+
+\returns the verdict, the measures it rests on and, unless the reference
+  fits, a message saying what does not match or how far the boundary starts
+*/
+template <class Point_3, class TriangleMesh,
+          class NamedParameters1 = parameters::Default_named_parameters,
+          class NamedParameters2 = parameters::Default_named_parameters>
+Hexahedral_mesh_optimization::Reference_fit
+hex_mesh_reference_fit(const Indexed_hex_mesh<Point_3>& mesh,
+                       const TriangleMesh& reference,
+                       const NamedParameters1& np1 = parameters::default_values(),
+                       const NamedParameters2& np2 = parameters::default_values())
+{
+  namespace HMO = Hexahedral_mesh_optimization::internal;
+  typedef typename GetGeomTraits<TriangleMesh, NamedParameters2>::type GT;
+  const GT gt = parameters::choose_parameter<GT>(parameters::get_parameter(np2, internal_np::geom_traits));
+  const auto vpm = parameters::choose_parameter(parameters::get_parameter(np2, internal_np::vertex_point),
+                                                get_const_property_map(CGAL::vertex_point, reference));
+  std::vector<HMO::Vec3> points;
+  std::vector<HMO::Tri> triangles;
+  HMO::face_graph_to_triangle_soup(reference, vpm, gt, points, triangles);
+  const double tolerance = parameters::choose_parameter(
+    parameters::get_parameter(np1, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005);
+  return HMO::measure_reference_fit(HMO::hex_mesh_to_arrays(mesh, np1), points, triangles, tolerance);
 }
 
 /*!

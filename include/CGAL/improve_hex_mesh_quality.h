@@ -65,6 +65,8 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   u.time_limit = s.time_limit = &time_limit; // one hard stop for the whole pipeline
 
   Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const std::string warning =
+    require_reference_fit(arrays, s.reference_points, s.reference_triangles, s.surface_tolerance);
   const Hex_mesh_arrays original = arrays;
   Optimization_result result;
   const bool untangle = untangle_first && quality_statistics(arrays).inverted > 0;
@@ -89,6 +91,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   }
   else
     result = q;
+  if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }
@@ -136,7 +139,7 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{0.005}
   \cgalParamNEnd
   \cgalParamNBegin{reference_surface}
-    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on}
+    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on. It is checked against the mesh boundary before anything moves (`hex_mesh_reference_fit()`): one in another coordinate frame or of another object throws `Hexahedral_mesh_optimization::Reference_mismatch`, the mesh untouched; one the boundary starts farther from than `surface_tolerance` adds a warning to the result}
     \cgalParamType{a model of `FaceListGraph` with an internal vertex point map, e.g. `Surface_mesh`}
     \cgalParamDefault{the boundary of the input mesh}
   \cgalParamNEnd

@@ -10,6 +10,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_untangler.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/reference_fit.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
@@ -126,9 +127,14 @@ same output on any machine, under any load and with any number of threads.
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{reference_surface}
-    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on}
+    \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on. It is checked against the mesh boundary before anything moves (`hex_mesh_reference_fit()`): one in another coordinate frame or of another object throws `Hexahedral_mesh_optimization::Reference_mismatch`, the mesh untouched; one the boundary starts far from adds a warning to the result}
     \cgalParamType{a model of `FaceListGraph` with an internal vertex point map, e.g. `Surface_mesh`}
     \cgalParamDefault{the boundary of the input mesh}
+  \cgalParamNEnd
+  \cgalParamNBegin{surface_tolerance}
+    \cgalParamDescription{surface error, relative to the reference's bounding-box diagonal, beyond which a reference the boundary starts from gets a warning}
+    \cgalParamType{`double`}
+    \cgalParamDefault{0.005}
   \cgalParamNEnd
   \cgalParamNBegin{sharp_angle}
     \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
@@ -217,8 +223,12 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   HMO::internal::read_untangle_parameters(np, gt, s, ref_points, ref_tris);
 
   HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const std::string warning = HMO::internal::require_reference_fit(
+    arrays, s.reference_points, s.reference_triangles,
+    choose_parameter(get_parameter(np, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005));
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
-  const HMO::Optimization_result result = untangler.run(arrays);
+  HMO::Optimization_result result = untangler.run(arrays);
+  if(!warning.empty()) result.warnings.push_back(warning);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }

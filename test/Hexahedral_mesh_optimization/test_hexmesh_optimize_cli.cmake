@@ -77,6 +77,16 @@ run(unwritable ${bunny} ${WORK}/no/such/dir/out.vtk)
 check("an unwritable output fails" NOT unwritable_rc EQUAL 0)
 check("the write error names the file: ${unwritable_err}" unwritable_err MATCHES "^hexmesh-optimize: error: [^\n]*out.vtk")
 
+# a reference surface in another frame (a tetrahedron far from the bunny):
+# a bad argument, exit 2, one error line naming both files, nothing written
+file(WRITE ${WORK}/far.obj "v 1000 1000 1000\nv 1001 1000 1000\nv 1000 1001 1000\nv 1000 1000 1001\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")
+run(far ${bunny} ${WORK}/far_out.mesh --reference ${WORK}/far.obj --report ${WORK}/far.json)
+check("a reference in another frame exits 2 (got ${far_rc})" far_rc EQUAL 2)
+check("one error line naming the reference and the mesh: ${far_err}" far_err MATCHES "^hexmesh-optimize: error: reference surface '[^\n]*far.obj' and mesh '[^\n]*bunny_dualsheet.vtk': [^\n]*\n$")
+check("the error says what does not match: ${far_err}" far_err MATCHES "do not overlap")
+check("no output for a reference that does not fit" NOT EXISTS ${WORK}/far_out.mesh)
+check("no report for a reference that does not fit" NOT EXISTS ${WORK}/far.json)
+
 # ------------------------------------------------------------------ good input
 run(good ${bunny} ${WORK}/out.vtk --report ${WORK}/report.json --histogram-svg=${WORK}/histogram.svg)
 check("the bundled bunny runs (rc ${good_rc}: ${good_err})" good_rc EQUAL 0)

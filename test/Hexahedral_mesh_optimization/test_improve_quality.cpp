@@ -13,6 +13,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h>
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
 #include <CGAL/improve_hex_mesh_quality.h>
@@ -292,9 +293,59 @@ static void test_boundary_restoration()
   HMO_CHECK(quality_statistics(b).msj >= msj_b - 1e-12);
 }
 
+/// A reference surface that does not fit (moved far away) makes the three
+/// functions throw Reference_mismatch before anything moves; one the
+/// boundary starts off (the mesh's boundary grown by 5 %) runs, with a warning.
+static void test_reference_fit()
+{
+  typedef CGAL::Surface_mesh<Point> Surface;
+  Mesh m = shell(3, 0.5);
+  auto boundary_of = [&](double scale, double shift) {
+    using namespace HMO::internal;
+    const Hex_mesh_arrays a = make_hex_mesh_arrays(m, K());
+    std::vector<Vec3> pts;
+    std::vector<Tri> tris;
+    triangulate_boundary(extract_boundary(a), a.points, Quad_split::diagonal_02, pts, tris);
+    Surface s;
+    for(const Vec3& p : pts) s.add_vertex(Point(scale * p[0] + shift, scale * p[1], scale * p[2]));
+    for(const Tri& t : tris)
+      s.add_face(Surface::Vertex_index(t[0]), Surface::Vertex_index(t[1]), Surface::Vertex_index(t[2]));
+    return s;
+  };
+  const Surface far = boundary_of(10., 1000.);
+  const Mesh before = m;
+  int thrown = 0;
+  try { CGAL::improve_hex_mesh_quality(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  catch(const HMO::Reference_mismatch& e)
+  {
+    ++thrown;
+    HMO_CHECK(std::string(e.what()).find("do not overlap") != std::string::npos);
+  }
+  try { CGAL::optimize_hex_mesh(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  catch(const HMO::Reference_mismatch&) { ++thrown; }
+  try { CGAL::untangle_hex_mesh(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  catch(const std::invalid_argument&) { ++thrown; } // Reference_mismatch is one
+  HMO_CHECK(thrown == 3);
+  HMO_CHECK(m.points == before.points); // untouched
+
+  // the boundary scaled by 1.05 about the origin (the shell's axis): every
+  // vertex 0.15 to 0.3 off, 2 to 4 % of the diagonal, under the 5 % of a
+  // mismatch
+  const Surface grown = boundary_of(1.05, 0.);
+  const HMO::Optimization_result r =
+    CGAL::improve_hex_mesh_quality(m, CGAL::hex_mesh_parameters::reference_surface(grown));
+  HMO_CHECK(r.warnings.size() == 1);
+  HMO_CHECK(!r.warnings.empty() && r.warnings[0].find("starts off the reference") != std::string::npos);
+  Mesh again = before;
+  const HMO::Optimization_result r_own =
+    CGAL::improve_hex_mesh_quality(again, CGAL::hex_mesh_parameters::reference_surface(boundary_of(1., 0.)));
+  HMO_CHECK(r_own.warnings.empty());
+}
+
 int main(int, char** argv)
 {
   test_boundary_restoration();
+  test_reference_fit();
   test_stage_schedule();
   test_never_worse();
   test_pipeline_on_tangled_mesh();

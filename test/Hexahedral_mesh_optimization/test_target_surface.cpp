@@ -547,6 +547,89 @@ void test_culled_distance()
   }
 }
 
+// The reference-fit check: the mesh's own boundary fits; scaled by 1.05
+// about its centre it is distant (a warning); scaled by 10 and moved away,
+// or replaced by a small far-away surface, it is mismatched, with a message
+// that says what does not match. Also on the bundled bunny with its reference.
+void test_reference_fit()
+{
+  typedef CGAL::Hexahedral_mesh_optimization::Reference_fit Fit;
+  const HMO::Hex_mesh_arrays a = grid(4, 4, 4);
+  const CGAL::Indexed_hex_mesh<Point> mesh = to_indexed(a);
+  auto boundary_transformed = [&](double scale, const Vec3& shift) {
+    HMO::Hex_mesh_arrays b = a;
+    const Vec3 c{0.5, 0.5, 0.5};
+    for(Vec3& p : b.points) p = c + scale * (p - c) + shift;
+    HMO::Triangle_surface s;
+    HMO::boundary_surface(b, s);
+    Surface out;
+    for(auto v : s.vertices()) out.add_vertex(s.point(v));
+    for(auto f : s.faces())
+    {
+      std::vector<Surface::Vertex_index> vs;
+      for(auto v : CGAL::vertices_around_face(s.halfedge(f), s)) vs.push_back(Surface::Vertex_index(std::size_t(v)));
+      out.add_face(vs[0], vs[1], vs[2]);
+    }
+    return out;
+  };
+  const Fit same = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1., Vec3{0, 0, 0}));
+  HMO_CHECK(same.verdict == Fit::fits);
+  HMO_CHECK(same.message.empty());
+  HMO_CHECK(same.max_mesh_to_reference < 1e-12 && same.max_reference_to_mesh < 1e-12);
+
+  // 1.05: every boundary vertex 0.025 off, 0.025 / (1.05 √3) = 0.0137 diagonals
+  const Fit grown = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}));
+  HMO_CHECK(grown.verdict == Fit::distant);
+  HMO_CHECK_CLOSE(grown.median_mesh_to_reference, 0.025 / (1.05 * std::sqrt(3.)), 1e-9);
+  HMO_CHECK(grown.message.find("0.0137") != std::string::npos);
+  // the same within a looser tolerance fits (the farthest vertices are the
+  // reference's corners, 0.025 √3 / (1.05 √3) = 0.0238 diagonals off)
+  HMO_CHECK_CLOSE(grown.max_reference_to_mesh, 0.025 / 1.05, 1e-9);
+  const Fit loose = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}),
+                                                 CGAL::hex_mesh_parameters::surface_tolerance(0.025));
+  HMO_CHECK(loose.verdict == Fit::fits);
+
+  const Fit other_frame = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(10., Vec3{100, 0, 0}));
+  std::cout << "mismatched reference: " << other_frame.message << std::endl;
+  HMO_CHECK(other_frame.verdict == Fit::mismatched);
+  HMO_CHECK(!other_frame.boxes_overlap);
+  HMO_CHECK(other_frame.message.find("do not overlap") != std::string::npos);
+  HMO_CHECK(other_frame.message.find("factor of 10") != std::string::npos);
+
+  // overlapping boxes of one size, but another object: a thin slab through the middle
+  HMO::Hex_mesh_arrays slab = grid(4, 4, 1);
+  for(Vec3& p : slab.points) p = Vec3{p[0], p[1], 0.45 + 0.1 * p[2]};
+  HMO::Triangle_surface ss;
+  HMO::boundary_surface(slab, ss);
+  Surface slab_surface;
+  for(auto v : ss.vertices()) slab_surface.add_vertex(ss.point(v));
+  for(auto f : ss.faces())
+  {
+    std::vector<Surface::Vertex_index> vs;
+    for(auto v : CGAL::vertices_around_face(ss.halfedge(f), ss)) vs.push_back(Surface::Vertex_index(std::size_t(v)));
+    slab_surface.add_face(vs[0], vs[1], vs[2]);
+  }
+  const Fit slab_fit = CGAL::hex_mesh_reference_fit(mesh, slab_surface);
+  HMO_CHECK(slab_fit.verdict == Fit::mismatched);
+  HMO_CHECK(slab_fit.boxes_overlap);
+  HMO_CHECK(slab_fit.message.find("half the mesh boundary vertices") != std::string::npos);
+
+  // the bundled bunny and its reference (another method's surface of the same shape)
+  const std::string dir = HMO_EXAMPLE_DATA_DIR;
+  CGAL::Indexed_hex_mesh<Point> bunny;
+  Surface ref;
+  std::string why;
+  HMO_CHECK(CGAL::IO::read_hex_mesh(dir + "/bunny_dualsheet.vtk", bunny));
+  HMO_CHECK(CGAL::IO::read_reference_surface(dir + "/bunny_reference.obj", ref, &why));
+  const Fit bf = CGAL::hex_mesh_reference_fit(bunny, ref);
+  std::cout << "bunny_dualsheet vs bunny_reference.obj: vertices to the reference median " << bf.median_mesh_to_reference
+            << " max " << bf.max_mesh_to_reference << ", reference vertices to the boundary median "
+            << bf.median_reference_to_mesh << " max " << bf.max_reference_to_mesh << std::endl;
+  // its reference is its own boundary cut along other diagonals: every
+  // vertex on the other surface, the Hausdorff distance (0.0117) in the quads
+  HMO_CHECK(bf.verdict == Fit::fits);
+}
+
 void test_shared_data()
 {
   const std::string dir = hmo_test::shared_data_dir();
@@ -616,6 +699,7 @@ int main(int, char** argv)
   test_constraints();
   test_surface_error();
   test_culled_distance();
+  test_reference_fit();
   test_shared_data();
   return hmo_test::report(argv[0]);
 }

@@ -62,6 +62,9 @@ struct Optimization_result
   /// whether the `time_limit` hard stop fired (the result is then the last
   /// checked state the run had reached when it stopped)
   bool time_limit_reached = false;
+  /// what the caller should know and that did not stop the run, e.g. a
+  /// reference surface the boundary starts far from (`Reference_fit`)
+  std::vector<std::string> warnings;
   std::vector<Stage_report> stages;
 };
 
