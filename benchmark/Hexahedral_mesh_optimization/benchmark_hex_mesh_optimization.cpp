@@ -7,6 +7,7 @@
 //                                   [--threads N | --threads-compare]
 //   benchmark_hex_mesh_optimization [DATA_DIR] --scaling [--scaling-max-hexes N]
 //                                   [--untangle] [--only SUBSTRING] [--threads N | --threads-compare]
+//   benchmark_hex_mesh_optimization [DATA_DIR] --stress [--stress-seeds N] [--only SUBSTRING] [--threads N]
 //
 // DATA_DIR defaults to HMO_SHARED_DATA_DIR (../shared/data seen from the
 // repository root). Every mode prints a Markdown table.
@@ -65,6 +66,16 @@
 //                includes generating the input and the few MB the process
 //                inherited from the parent, printed above the table), hash
 //                (as above). Generating the input is not timed.
+//
+//   --stress   : the stress sets (`stress_sets` below): every valid mesh of
+//                the shared data (stress-base/, amips/, low-quality/ and the
+//                edge-cone method's published outputs) perturbed with N seeds
+//                per mode, interior vertices only and every vertex, by 0.3 to
+//                0.8 of the local edge length (`perturb_by_local_edge`), and
+//                optimised with the unperturbed boundary as reference. One
+//                line per mesh and mode, and a total per mode: runs ending at
+//                0 inverted, runs ending at or above the unperturbed MSJ, the
+//                worst surface error, the optimiser's time.
 //
 // Options:
 //   --untangle              the --untangle mode; with --scaling, only the
@@ -272,6 +283,43 @@ static std::size_t perturb(Mesh& m, double fraction, unsigned seed, bool interio
     if(q.inverted >= fraction * m.hexahedra.size()) return q.inverted;
   }
   return CGAL::hex_mesh_quality(m).inverted;
+}
+
+/// The stress sets' generator: every vertex (or, `interior_only`, every
+/// interior vertex) moved in a random direction by `amplitude` times its
+/// local edge length (the mean length of the mesh edges at it). Seeded, so
+/// that runs compare. Returns the number of vertices moved.
+static std::size_t perturb_by_local_edge(Mesh& m, double amplitude, unsigned seed, bool interior_only)
+{
+  std::vector<double> sum(m.points.size(), 0.);
+  std::vector<int> count(m.points.size(), 0);
+  static const int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for(const auto& h : m.hexahedra)
+    for(const auto& e : edges)
+    {
+      // an edge shared by several hexes counts once per hex: a mean weighted
+      // by the hexes around it, which is what "local" asks for
+      const double l = std::sqrt(CGAL::squared_distance(m.points[h[e[0]]], m.points[h[e[1]]]));
+      for(int k = 0; k < 2; ++k) { sum[h[e[k]]] += l; ++count[h[e[k]]]; }
+    }
+  std::vector<char> fixed(m.points.size(), 0);
+  if(interior_only)
+    for(std::size_t v : HMO::internal::extract_boundary(HMO::internal::make_hex_mesh_arrays(m, K())).vertices)
+      fixed[v] = 1;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0., 1.);
+  std::size_t moved = 0;
+  for(std::size_t v = 0; v < m.points.size(); ++v)
+  {
+    K::Vector_3 d(g(rng), g(rng), g(rng)); // drawn for every vertex: the same directions in both modes
+    if(fixed[v] || count[v] == 0) continue;
+    const double n = std::sqrt(d.squared_length());
+    if(!(n > 0.)) continue;
+    m.points[v] = m.points[v] + (amplitude * sum[v] / count[v] / n) * d;
+    ++moved;
+  }
+  return moved;
 }
 
 /// the position of corner q of a hexahedron in its own (a, b, c) frame, MEDIT/VTK
@@ -627,6 +675,107 @@ static int benchmark_rows(const std::string& dir, bool untangle_only, const std:
 }
 
 // ---------------------------------------------------------------------------
+// --stress
+
+/// One line of the stress table: the runs of one mesh in one mode.
+struct Stress_line
+{
+  int runs = 0, untangled = 0, above = 0;
+  std::size_t inverted_min = std::size_t(-1), inverted_max = 0;
+  double msj_min = 2., worst_error = 0.;
+  std::vector<double> msj, seconds;
+};
+
+static double median_of(std::vector<double> v)
+{
+  if(v.empty()) return 0.;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// The stress sets: every valid shared mesh, perturbed by
+/// `perturb_by_local_edge` with `seeds` seeds per mode (interior vertices
+/// only, every vertex), amplitudes spread evenly over 0.3 to 0.8 of the
+/// local edge length, then optimised by `CGAL::optimize_hex_mesh` with the
+/// unperturbed boundary as reference surface and the default tolerance
+/// (0.005). One line per mesh and mode: runs ending with 0 inverted, runs
+/// whose MSJ ends at or above the unperturbed mesh's, the worst surface
+/// error (against the unperturbed boundary), the optimiser's time.
+static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads)
+{
+  const std::vector<std::string> meshes = {
+    "stress-base/fandisk.vtk", "stress-base/hanger.vtk", "stress-base/kitty.vtk",
+    "amips/rockerarm_li12.vtk", "amips/fertility_gregson11.mesh",
+    "low-quality/kitten_with_bifur_2.mesh", "low-quality/cat_2.mesh", "low-quality/Dolphin_2.mesh",
+    "edge-cone/published/block_edgecone.mesh", "edge-cone/published/bust_edgecone.mesh",
+    "edge-cone/published/cap_edgecone.mesh", "edge-cone/published/hanger_stresstest_edgecone.mesh",
+    "edge-cone/published/impeller_stresstest_edgecone.mesh", "edge-cone/published/bunny_edgecone.mesh"};
+  std::cout << "Stress sets: " << seeds << " seeds per mode, amplitude 0.3 to 0.8 of the local edge length, "
+            << "reference = the unperturbed boundary, surface tolerance 0.005\n\n"
+            << "| mesh | mode | hexes | MSJ unperturbed | runs | 0 inverted | MSJ ≥ unperturbed | inverted in | "
+               "MSJ out min / median | worst surface error | optimiser s median / max |\n"
+            << "|---|---|---:|---:|---:|---:|---:|---|---|---:|---|\n";
+  Stress_line total[2];
+  const Thread_limit limit(threads);
+  for(const std::string& name : meshes)
+  {
+    if(!only.empty() && name.find(only) == std::string::npos) continue;
+    Mesh base;
+    CGAL::IO::Hex_mesh_io_error err;
+    if(!CGAL::IO::read_hex_mesh(dir + "/" + name, base, &err))
+    {
+      std::cout << "| " << name << " | read error: " << err.what() << " |" << std::endl;
+      continue;
+    }
+    const double msj0 = CGAL::hex_mesh_quality(base).msj;
+    HMO::internal::Triangle_surface reference;
+    HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
+    for(int mode = 0; mode < 2; ++mode)
+    {
+      Stress_line line;
+      for(int k = 0; k < seeds; ++k)
+      {
+        const double amplitude = seeds > 1 ? 0.3 + 0.5 * k / (seeds - 1) : 0.55;
+        Mesh mesh = base;
+        perturb_by_local_edge(mesh, amplitude, unsigned(k + 1), mode == 0);
+        Setup_visitor visitor;
+        const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
+        for(Stress_line* l : {&line, &total[mode]})
+        {
+          ++l->runs;
+          if(r.inverted_after == 0) ++l->untangled;
+          if(r.msj_after >= msj0) ++l->above;
+          l->inverted_min = (std::min)(l->inverted_min, r.inverted_before);
+          l->inverted_max = (std::max)(l->inverted_max, r.inverted_before);
+          l->msj_min = (std::min)(l->msj_min, r.msj_after);
+          l->worst_error = (std::max)(l->worst_error, r.surface_error);
+          l->msj.push_back(r.msj_after);
+          l->seconds.push_back(r.seconds);
+        }
+      }
+      char b[512];
+      std::snprintf(b, sizeof b, "| %s | %s | %zu | %.3f | %d | %d | %d | %zu–%zu | %.3f / %.3f | %.4f | %.1f / %.1f |",
+                    name.c_str(), mode == 0 ? "interior" : "all vertices", base.hexahedra.size(), msj0, line.runs,
+                    line.untangled, line.above, line.inverted_min, line.inverted_max, line.msj_min,
+                    median_of(line.msj), line.worst_error, median_of(line.seconds),
+                    *std::max_element(line.seconds.begin(), line.seconds.end()));
+      std::cout << b << std::endl;
+    }
+  }
+  for(int mode = 0; mode < 2; ++mode)
+  {
+    const Stress_line& t = total[mode];
+    if(t.runs == 0) continue;
+    std::printf("| **all** | %s | | | %d | %d (%.0f %%) | %d (%.0f %%) | | %.3f / – | %.4f | %.1f / %.1f |\n",
+                mode == 0 ? "interior" : "all vertices", t.runs, t.untangled, 100. * t.untangled / t.runs, t.above,
+                100. * t.above / t.runs, t.msj_min, t.worst_error, median_of(t.seconds),
+                *std::max_element(t.seconds.begin(), t.seconds.end()));
+  }
+  std::cout << std::flush;
+  return 0;
+}
+
+// ---------------------------------------------------------------------------
 // --scaling
 
 struct Scaling_case
@@ -844,6 +993,8 @@ static void usage(std::ostream& out)
          "  --threads-compare      every row under 1 and under 2 threads; times and output hashes\n"
          "  --scaling              generated grids (125k, 1M hexes) and refined fertility (159k, 1.27M)\n"
          "  --scaling-max-hexes N  with --scaling, skip the cases of more than N hexes\n"
+         "  --stress               stress sets: every valid shared mesh perturbed (interior / all vertices)\n"
+         "  --stress-seeds N       with --stress, N perturbations per mesh and mode (default 5)\n"
          "DATA_DIR defaults to " HMO_SHARED_DATA_DIR "\n";
 }
 
@@ -860,8 +1011,8 @@ static bool parse_count(const char* s, long long min, long long& value)
 int main(int argc, char** argv)
 {
   std::string dir = HMO_SHARED_DATA_DIR, only;
-  bool untangle_only = false, threads_compare = false, scaling_mode = false;
-  long long threads = 0, max_hexes = 0;
+  bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false;
+  long long threads = 0, max_hexes = 0, stress_seeds = 5;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -878,6 +1029,15 @@ int main(int argc, char** argv)
       }
     }
     else if(a == "--scaling") scaling_mode = true;
+    else if(a == "--stress") stress_mode = true;
+    else if(a == "--stress-seeds" && has_value)
+    {
+      if(!parse_count(argv[++i], 1, stress_seeds))
+      {
+        std::cerr << "benchmark_hex_mesh_optimization: --stress-seeds needs a positive integer\n";
+        return 2;
+      }
+    }
     else if(a == "--scaling-max-hexes" && has_value)
     {
       if(!parse_count(argv[++i], 1, max_hexes))
@@ -923,6 +1083,15 @@ int main(int argc, char** argv)
   {
     std::cout << "shared data folder " << dir << " is absent: nothing to benchmark" << std::endl;
     return 0;
+  }
+  if(stress_mode)
+  {
+    if(threads_compare)
+    {
+      std::cerr << "benchmark_hex_mesh_optimization: --stress runs under one thread setting (--threads N)\n";
+      return 2;
+    }
+    return stress_sets(dir, only, int(stress_seeds), int(threads));
   }
   return benchmark_rows(dir, untangle_only, only, thread_runs);
 }
