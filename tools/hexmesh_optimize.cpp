@@ -149,6 +149,23 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
   return r;
 }
 
+/// The warnings of a run on standard error, even with --quiet: the elements
+/// a solver will refuse (the first 20; all are in the JSON report), and the
+/// optimiser's warnings but `already_printed`.
+void print_run_warnings(const CGAL::Hexahedral_mesh_optimization::Optimization_result& r,
+                        const std::string& already_printed)
+{
+  const std::size_t shown = 20;
+  for(std::size_t i = 0; i < r.unresolved.size() && i < shown; ++i)
+    std::cerr << "warning: hexahedron " << r.unresolved[i].hex << " still inverted (scaled Jacobian "
+              << r.unresolved[i].scaled_jacobian << "): " << r.unresolved[i].details << "\n";
+  if(r.unresolved.size() > shown)
+    std::cerr << "warning: " << r.unresolved.size() - shown
+              << " more hexahedra still inverted (all are in the --report JSON)\n";
+  for(const std::string& w : r.warnings)
+    if(w != already_printed) std::cerr << "warning: " << w << "\n";
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -191,6 +208,7 @@ int main(int argc, char** argv)
       return fail(io_error.what());
 
     Surface reference;
+    std::string reference_warning; // printed once, when the reference is read
     const bool has_reference = !options.reference.empty();
     if(has_reference)
     {
@@ -208,7 +226,10 @@ int main(int argc, char** argv)
         return 2;
       }
       if(fit.verdict == CGAL::Hexahedral_mesh_optimization::Reference_fit::distant)
+      {
+        reference_warning = fit.message;
         std::cerr << "warning: reference surface '" << options.reference << "': " << fit.message << std::endl;
+      }
     }
 
     Mesh_report before;
@@ -245,6 +266,8 @@ int main(int argc, char** argv)
       after.surface_error = r.surface_error;
       after.time_limit_reached = r.time_limit_reached;
       after.warnings = r.warnings;
+      after.unresolved = r.unresolved;
+      print_run_warnings(r, reference_warning);
 
       CGAL::IO::Hex_mesh_fields fields;
       if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))

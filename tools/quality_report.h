@@ -11,6 +11,7 @@
 #define HMO_TOOLS_QUALITY_REPORT_H
 
 #include <CGAL/hex_mesh_quality.h>
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +42,8 @@ struct Mesh_report
   bool time_limit_reached = false;
   /// output: the optimisation's warnings (`Optimization_result::warnings`)
   std::vector<std::string> warnings;
+  /// output: the elements still inverted, and why (`Optimization_result::unresolved`)
+  std::vector<CGAL::Hexahedral_mesh_optimization::Unresolved_element> unresolved;
 };
 
 inline std::string format_fixed(double v, int decimals)
@@ -195,6 +198,15 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
     s << ",\n" << in << "\"time_limit_reached\": " << (r.time_limit_reached ? "true" : "false");
     s << ",\n" << in << "\"warnings\": [";
     for(std::size_t i = 0; i < r.warnings.size(); ++i) s << (i ? ", " : "") << json_string(r.warnings[i]);
+    s << "]";
+    s << ",\n" << in << "\"unresolved\": [";
+    for(std::size_t i = 0; i < r.unresolved.size(); ++i)
+    {
+      const auto& e = r.unresolved[i];
+      static const char* reasons[] = {"locked", "region_exhausted", "time_limit"};
+      s << (i ? ", " : "") << "{\"hex\": " << e.hex << ", \"scaled_jacobian\": " << json_number(e.scaled_jacobian)
+        << ", \"reason\": \"" << reasons[int(e.reason)] << "\", \"details\": " << json_string(e.details) << "}";
+    }
     s << "]";
   }
   s << "\n" << indent << "}";

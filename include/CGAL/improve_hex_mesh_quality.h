@@ -92,6 +92,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   else
     result = q;
   if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
+  if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }
@@ -197,7 +198,9 @@ input: when nothing better is found the input is returned as it was.
 
 \returns MSJ, ASJ and inverted count before and after, surface error against
   the reference, time and a report per stage; `success` is true when the mesh
-  has no inverted element and reached `target_msj`.
+  has no inverted element and reached `target_msj`. The elements still
+  inverted, if any, are listed with the reason each was not freed
+  (`Optimization_result::unresolved`).
 */
 template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result

@@ -11,6 +11,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_untangler.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/reference_fit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/unresolved_elements.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
@@ -199,7 +200,9 @@ same output on any machine, under any load and with any number of threads.
 \cgalNamedParamsEnd
 
 \returns what was done: inverted count and MSJ before and after, surface
-  error, time and a report per stage.
+  error, time and a report per stage; the elements still inverted, if any,
+  each with the reason it was not freed (`Optimization_result::unresolved`);
+  the warnings (`Optimization_result::warnings`).
 */
 template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
 Hexahedral_mesh_optimization::Optimization_result
@@ -229,6 +232,8 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);
+  if(result.inverted_after > 0)
+    result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }

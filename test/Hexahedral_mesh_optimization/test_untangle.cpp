@@ -122,8 +122,51 @@ static void check_untangled(Mesh& m, const char* what, double max_surface_error 
   if(max_surface_error >= 0.) HMO_CHECK(r.surface_error <= max_surface_error);
 }
 
+/// The elements left inverted are listed with their reason: a corner hex
+/// whose grid corner is pushed inside is "locked" (its inverted corner frame
+/// has only boundary vertices); hexes inverted by the grid's centre vertex
+/// (interior) are "region_exhausted", or "time_limit" when the stop fired.
+static void test_unresolved_elements()
+{
+  namespace HMOI = HMO::internal;
+  Mesh m = grid(2);
+  m.points[0] = Point(0.8, 0.8, 0.8);   // grid corner: boundary, and so are its 3 neighbours in hex 0
+  m.points[13] = Point(2.6, 2.6, 2.6);  // the grid's centre (1, 1, 1): interior
+  const HMOI::Hex_mesh_arrays a = HMOI::make_hex_mesh_arrays(m, K());
+  const std::size_t inverted = recount_inverted(m);
+  HMO_CHECK(inverted >= 2);
+  const std::vector<HMO::Unresolved_element> u = HMOI::unresolved_elements(a, false);
+  HMO_CHECK(u.size() == inverted);
+  std::size_t locked = 0, exhausted = 0;
+  for(const HMO::Unresolved_element& e : u)
+  {
+    HMO_CHECK(e.scaled_jacobian < 0.);
+    HMO_CHECK_CLOSE(e.scaled_jacobian, CGAL::hex_mesh_scaled_jacobians(m)[e.hex], 1e-12);
+    if(e.reason == HMO::Unresolved_element::locked) ++locked;
+    if(e.reason == HMO::Unresolved_element::region_exhausted) ++exhausted;
+  }
+  HMO_CHECK(!u.empty() && u[0].hex == 0 && u[0].reason == HMO::Unresolved_element::locked);
+  HMO_CHECK(u[0].details.find("corner 0 (vertex 0)") != std::string::npos);
+  HMO_CHECK(exhausted >= 1);
+  HMO_CHECK(locked + exhausted == u.size());
+  for(const HMO::Unresolved_element& e : HMOI::unresolved_elements(a, true))
+    HMO_CHECK(e.reason != HMO::Unresolved_element::region_exhausted);
+
+  // through the public function, stopped at once by its time limit: every
+  // element still inverted is listed
+  Mesh stopped = m;
+  const HMO::Optimization_result r = CGAL::untangle_hex_mesh(stopped, CGAL::hex_mesh_parameters::time_limit(1e-9));
+  HMO_CHECK(r.time_limit_reached);
+  HMO_CHECK(r.inverted_after > 0 && r.unresolved.size() == r.inverted_after);
+  // run to the end, nothing is left and nothing is listed
+  Mesh whole = m;
+  const HMO::Optimization_result full = CGAL::untangle_hex_mesh(whole);
+  HMO_CHECK(full.unresolved.size() == full.inverted_after);
+}
+
 int main(int, char** argv)
 {
+  test_unresolved_elements();
   // 1. a perturbed 6x6x6 grid with interior vertices pushed across their cells
   {
     Mesh m = grid(6);

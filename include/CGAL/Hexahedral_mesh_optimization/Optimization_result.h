@@ -30,6 +30,27 @@ struct Stage_report
 
 /*!
 \ingroup PkgHexahedralMeshOptimizationRef
+An element still inverted when an optimisation gives up, and why.
+*/
+struct Unresolved_element
+{
+  std::size_t hex = 0;          ///< its index in the mesh's hexahedra
+  double scaled_jacobian = 0.;  ///< its Verdict scaled Jacobian (negative)
+  /// `locked`: one of its inverted corner frames has its corner and the three
+  /// neighbours along its edges all on the boundary (or the centre frame is
+  /// inverted and all 8 vertices are): no interior vertex can fix it, only
+  /// moving the surface can (this reason comes first, whether the time
+  /// limit fired or not).
+  /// `region_exhausted`: it has an interior vertex in an inverted frame,
+  /// and the stages' widest regions around it did not free it.
+  /// `time_limit`: the `time_limit` hard stop fired before the stages were done.
+  enum Reason { locked, region_exhausted, time_limit };
+  Reason reason = region_exhausted;
+  std::string details;          ///< which frames are inverted, in words
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
 The result of `untangle_hex_mesh()`: never a bare bool.
 
 `success` is true when the mesh has no inverted element at the end (and,
@@ -65,6 +86,9 @@ struct Optimization_result
   /// what the caller should know and that did not stop the run, e.g. a
   /// reference surface the boundary starts far from (`Reference_fit`)
   std::vector<std::string> warnings;
+  /// the elements still inverted at the end (empty when `inverted_after` is
+  /// 0), in index order, each with the reason it was not freed
+  std::vector<Unresolved_element> unresolved;
   std::vector<Stage_report> stages;
 };
 
