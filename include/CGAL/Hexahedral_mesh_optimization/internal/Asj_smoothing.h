@@ -402,7 +402,7 @@ public:
     {
       asj_detail::all_samples(corners(h), &m_samples[9 * h]);
       m_sj[h] = asj_detail::exact_minimum(&m_samples[9 * h]);
-      m_floor[h] = (std::min)(s.min_sj_floor, m_sj[h]);
+      m_floor[h] = element_floor(s.min_sj_floor, m_sj[h]);
     }
     std::size_t maxdeg = 0;
     for(std::size_t v = 0; v < nv; ++v)

@@ -24,7 +24,9 @@
 //   - neither direction of the surface deviation around the vertex
 //     (Surface_guard) grows, and
 //   - no hex around the vertex falls below min(floor, its minimum before),
-//     `floor` being the MSJ the mesh has: the MSJ never drops.
+//     `floor` being the MSJ the mesh has: the MSJ never drops; nor below 0
+//     when none is inverted, and no more become inverted when one is
+//     (`element_floor`, `Worst_element_smoothing::keeps_floor`).
 // Vertices are visited furthest from home first; the interior vertices around
 // the ones that could not move are then given a max-min move
 // (Worst_element_smoothing) so that the next sweep may move them further.
@@ -52,7 +54,7 @@ struct Boundary_restoration_settings
   /// untangling that kept the boundary fixed, all of them are, up to
   /// rounding, and visiting them cost impeller_stresstest 3 s per stage
   double home_distance = 0.;
-  /// no hex may fall below min(floor, its minimum before the move)
+  /// no hex may fall below min(floor, its minimum before the move) (see `element_floor`)
   double floor = 0.;
   int max_sweeps = 8;
   /// the run's hard stop (null: none), read between vertices
@@ -109,13 +111,12 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
       const Vec3 x = points[v];
       const Surface_deviation dev = guard.local_deviations(points, v, x);
       if(dev.max() <= s.threshold) continue;
-      const double floor = (std::min)(s.floor, probe.local_minimum(points, v, x));
+      const double now = probe.local_minimum(points, v, x);
       bool done = false;
       for(double step = 1.; step >= 0.125 && !done; step *= 0.5)
       {
         const Vec3 y = x + step * (home[v] - x);
-        // (written so that a NaN fails, as a zero-length edge would give)
-        if(!(probe.local_minimum(points, v, y) >= floor)) continue;
+        if(!probe.keeps_floor(points, v, y, s.floor, now)) continue;
         if(!guard.allows(points, v, y, dev)) continue;
         points[v] = y;
         done = true;

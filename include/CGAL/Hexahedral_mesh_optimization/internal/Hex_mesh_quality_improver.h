@@ -718,7 +718,7 @@ private:
       const Vec3 a = ts.constraint_at(v, points[v]).anchor;
       if(squared_norm(a - points[v]) == 0.) continue;
       const double now = probe.local_minimum(points, v, points[v]);
-      if(probe.local_minimum(points, v, a) < (std::min)(floor, now)) continue;
+      if(!probe.keeps_floor(points, v, a, floor, now)) continue;
       const Surface_deviation allowed = guard.bound_at(points, v, points[v], tolerance);
       if(!guard.allows(points, v, a, allowed)) continue;
       points[v] = a;

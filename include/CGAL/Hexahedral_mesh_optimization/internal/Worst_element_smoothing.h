@@ -158,6 +158,29 @@ public:
   }
 
   /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
+  /// how many hexes around v are inverted with v at x
+  std::size_t inverted_around(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
+  {
+    std::size_t n = 0;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      std::array<Vec3, 8> p = corners(points, c->hex);
+      p[c->local] = x;
+      if(is_inverted(scaled_jacobian(p))) ++n;
+    }
+    return n;
+  }
+
+  /// whether v may move from where it is to x as far as quality goes: the
+  /// minimum around v stays at or above `element_floor(floor, its minimum
+  /// now)` (`now`), and, when a hex around v is inverted, no more are
+  bool keeps_floor(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, double floor, double now) const
+  {
+    // (written so that a NaN fails, as a zero-length edge would give)
+    if(!(local_minimum(points, v, x) >= element_floor(floor, now))) return false;
+    return !is_inverted(now) || inverted_around(points, v, x) <= inverted_around(points, v, points[v]);
+  }
+
   double local_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
   {
     double m = 2.;
@@ -260,10 +283,18 @@ private:
     if(!(gn > 0.)) return 0;
     std::vector<Vec3> x0(verts.size());
     for(std::size_t i = 0; i < verts.size(); ++i) x0[i] = points[verts[i]];
+    // with an inverted hex around, the rise of the minimum does not keep the
+    // valid ones valid: their count may not rise (see `element_floor`)
+    auto inverted = [&] {
+      std::size_t n = 0;
+      for(std::size_t k : around) if(is_inverted(hex_sj(points, k))) ++n;
+      return n;
+    };
+    const std::size_t inverted_before = is_inverted(hard_minimum()) ? inverted() : 0;
     for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
     {
       for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i] + (t / gn) * g[i];
-      if(hard_minimum() > f0 + 1e-9)
+      if(hard_minimum() > f0 + 1e-9 && (inverted_before == 0 || inverted() <= inverted_before))
       {
         for(std::size_t k : around) sj[k] = hex_sj(points, k);
         return 1;
@@ -347,7 +378,10 @@ private:
           if(moves[m] == along_class) x = m_target->constraint_at(v, x).anchor;
           else if(moves[m] == on_reference) m_target->closest_on_reference(Vec3(x), x);
           const double f = local_minimum(points, v, x);
-          if(f > f0 + 1e-9 && (!guarded || guard_allows(x)))
+          // (a rise of the minimum keeps every valid hex valid unless one
+          // around v is inverted: then their count may not rise)
+          if(f > f0 + 1e-9 && (!is_inverted(f0) || inverted_around(points, v, x) <= inverted_around(points, v, x0)) &&
+             (!guarded || guard_allows(x)))
           {
             points[v] = x;
             f0 = f;

@@ -206,6 +206,19 @@ inline double scaled_jacobian(const Hex_mesh_arrays& m, std::size_t h)
 /// untangling aims at every element strictly positive.
 inline bool is_inverted(double sj) { return sj < 0.; }
 
+/// The least scaled Jacobian a quality stage may leave an element at (or the
+/// hexes around a moved vertex, `current` being their minimum), given the
+/// stage's `floor`: an inverted element may not get worse, a valid one may
+/// go down to the floor but not below 0. With elements still inverted the
+/// floor (the MSJ) is negative, and a floor alone let the stages invert
+/// valid elements (kitten_with_bifur_2 with every vertex perturbed: an ASJ
+/// pass took the count from 4 to 18); the inverted count around a vertex
+/// must then not rise either (`Worst_element_smoothing::inverted_around`).
+inline double element_floor(double floor, double current)
+{
+  return is_inverted(current) ? current : (std::max)(0., (std::min)(floor, current));
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 } // namespace CGAL
