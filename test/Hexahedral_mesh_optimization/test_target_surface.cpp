@@ -556,21 +556,14 @@ void test_reference_fit()
   typedef CGAL::Hexahedral_mesh_optimization::Reference_fit Fit;
   const HMO::Hex_mesh_arrays a = grid(4, 4, 4);
   const CGAL::Indexed_hex_mesh<Point> mesh = to_indexed(a);
+  // (HMO::Triangle_surface is a Surface_mesh of this kernel's points)
   auto boundary_transformed = [&](double scale, const Vec3& shift) {
     HMO::Hex_mesh_arrays b = a;
     const Vec3 c{0.5, 0.5, 0.5};
     for(Vec3& p : b.points) p = c + scale * (p - c) + shift;
-    HMO::Triangle_surface s;
+    Surface s;
     HMO::boundary_surface(b, s);
-    Surface out;
-    for(auto v : s.vertices()) out.add_vertex(s.point(v));
-    for(auto f : s.faces())
-    {
-      std::vector<Surface::Vertex_index> vs;
-      for(auto v : CGAL::vertices_around_face(s.halfedge(f), s)) vs.push_back(Surface::Vertex_index(std::size_t(v)));
-      out.add_face(vs[0], vs[1], vs[2]);
-    }
-    return out;
+    return s;
   };
   const Fit same = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1., Vec3{0, 0, 0}));
   HMO_CHECK(same.verdict == Fit::fits);
@@ -599,16 +592,8 @@ void test_reference_fit()
   // overlapping boxes of one size, but another object: a thin slab through the middle
   HMO::Hex_mesh_arrays slab = grid(4, 4, 1);
   for(Vec3& p : slab.points) p = Vec3{p[0], p[1], 0.45 + 0.1 * p[2]};
-  HMO::Triangle_surface ss;
-  HMO::boundary_surface(slab, ss);
   Surface slab_surface;
-  for(auto v : ss.vertices()) slab_surface.add_vertex(ss.point(v));
-  for(auto f : ss.faces())
-  {
-    std::vector<Surface::Vertex_index> vs;
-    for(auto v : CGAL::vertices_around_face(ss.halfedge(f), ss)) vs.push_back(Surface::Vertex_index(std::size_t(v)));
-    slab_surface.add_face(vs[0], vs[1], vs[2]);
-  }
+  HMO::boundary_surface(slab, slab_surface);
   const Fit slab_fit = CGAL::hex_mesh_reference_fit(mesh, slab_surface);
   HMO_CHECK(slab_fit.verdict == Fit::mismatched);
   HMO_CHECK(slab_fit.boxes_overlap);
