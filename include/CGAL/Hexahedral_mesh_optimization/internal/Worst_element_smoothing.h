@@ -157,7 +157,6 @@ public:
     return n;
   }
 
-  /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
   /// how many hexes around v are inverted with v at x
   std::size_t inverted_around(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
   {
@@ -181,6 +180,7 @@ public:
     return !is_inverted(now) || inverted_around(points, v, x) <= inverted_around(points, v, points[v]);
   }
 
+  /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
   double local_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
   {
     double m = 2.;
