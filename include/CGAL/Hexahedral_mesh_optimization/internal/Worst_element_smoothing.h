@@ -290,11 +290,12 @@ private:
       for(std::size_t k : around) if(is_inverted(hex_sj(points, k))) ++n;
       return n;
     };
-    const std::size_t inverted_before = is_inverted(hard_minimum()) ? inverted() : 0;
+    const double hard0 = hard_minimum();
+    const std::size_t inverted_before = is_inverted(hard0) ? inverted() : 0;
     for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
     {
       for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i] + (t / gn) * g[i];
-      if(hard_minimum() > f0 + 1e-9 && (inverted_before == 0 || inverted() <= inverted_before))
+      if(hard_minimum() > hard0 + 1e-9 && (inverted_before == 0 || inverted() <= inverted_before))
       {
         for(std::size_t k : around) sj[k] = hex_sj(points, k);
         return 1;
