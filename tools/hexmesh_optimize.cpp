@@ -301,8 +301,15 @@ int main(int argc, char** argv)
     if(!options.histogram_svg.empty() &&
        !write_text_file(options.histogram_svg, histogram_svg(before, has_output ? &after : nullptr), error))
       return fail(error);
-    if(check_failed)
+    // the status says whether the output can be used: elements still
+    // inverted (4) first, then a failed --check (3), then a run cut short by
+    // the time limit (5)
+    if(has_output && after.quality.inverted > 0)
+      exit_status = 4;
+    else if(check_failed)
       exit_status = 3;
+    else if(has_output && after.time_limit_reached)
+      exit_status = 5;
   }
   catch(const std::exception& e)
   {

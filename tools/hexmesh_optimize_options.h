@@ -170,9 +170,12 @@ inline std::string usage()
   }
   s << "  -h, --help                  print this help and exit\n"
        "\n"
-       "exit status: 0 success, 1 the mesh could not be read, processed or written,\n"
-       "2 bad command line or a --reference that does not fit the mesh (another frame or\n"
-       "object; nothing is written), 3 --check failed (the output is written all the same)\n";
+       "exit status: 0 success (with OUTPUT: no element of the output is inverted), 1 the\n"
+       "mesh could not be read, processed or written, 2 bad command line or a --reference\n"
+       "that does not fit the mesh (another frame or object; nothing is written), 3 --check\n"
+       "failed, 4 elements of the output are still inverted (listed on standard error and in\n"
+       "the JSON report), 5 the time limit stopped the stages (the output has no inverted\n"
+       "element); 3, 4 and 5 write the output all the same, and 4 comes before 3 before 5\n";
   return s.str();
 }
 
