@@ -48,30 +48,24 @@ struct Reference_fit_thresholds
 
 namespace reference_fit_detail {
 
-struct Box
+inline CGAL::Bbox_3 bbox_of(const std::vector<Vec3>& points)
 {
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-          -std::numeric_limits<double>::infinity()};
-  void add(const Vec3& p)
-  {
-    for(int k = 0; k < 3; ++k) { lo[k] = (std::min)(lo[k], p[k]); hi[k] = (std::max)(hi[k], p[k]); }
-  }
-  double diagonal() const { return norm(hi - lo); }
-  Vec3 centre() const { return 0.5 * (lo + hi); }
-  bool overlaps(const Box& b) const
-  {
-    for(int k = 0; k < 3; ++k)
-      if(hi[k] < b.lo[k] || b.hi[k] < lo[k]) return false;
-    return true;
-  }
-};
+  CGAL::Bbox_3 b;
+  for(const Vec3& p : points) b += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
+  return b;
+}
 
-inline std::ostream& operator<<(std::ostream& os, const Box& b)
+inline Vec3 centre_of(const CGAL::Bbox_3& b)
 {
-  return os << "[" << b.lo[0] << ", " << b.hi[0] << "] x [" << b.lo[1] << ", " << b.hi[1] << "] x [" << b.lo[2]
-            << ", " << b.hi[2] << "]";
+  return Vec3{0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())};
+}
+
+inline std::string interval_text(const CGAL::Bbox_3& b)
+{
+  std::ostringstream os;
+  os << "[" << b.xmin() << ", " << b.xmax() << "] x [" << b.ymin() << ", " << b.ymax() << "] x [" << b.zmin()
+     << ", " << b.zmax() << "]";
+  return os.str();
 }
 
 /// distances of `points` to the triangles (`tri_points`, `tris`): median and maximum
@@ -114,12 +108,10 @@ inline Reference_fit measure_reference_fit(const Hex_mesh_arrays& mesh, const st
     for(const Tri& t : ref_tris) for(std::size_t i : t) on[i] = 1;
     for(std::size_t i = 0; i < ref_points.size(); ++i) if(on[i]) used.push_back(ref_points[i]);
   }
-  Box mb, rb;
-  for(const Vec3& p : bpoints) mb.add(p);
-  for(const Vec3& p : used) rb.add(p);
-  fit.mesh_diagonal = mb.diagonal();
-  fit.reference_diagonal = rb.diagonal();
-  fit.boxes_overlap = mb.overlaps(rb);
+  const CGAL::Bbox_3 mb = bbox_of(bpoints), rb = bbox_of(used);
+  fit.mesh_diagonal = diagonal(mb);
+  fit.reference_diagonal = diagonal(rb);
+  fit.boxes_overlap = CGAL::do_overlap(mb, rb);
   std::ostringstream why;
   if(bpoints.empty() || used.empty() || !(fit.reference_diagonal > 0.))
   {
@@ -129,7 +121,7 @@ inline Reference_fit measure_reference_fit(const Hex_mesh_arrays& mesh, const st
     return fit;
   }
   const double rd = fit.reference_diagonal;
-  fit.centre_offset = norm(mb.centre() - rb.centre()) / rd;
+  fit.centre_offset = norm(centre_of(mb) - centre_of(rb)) / rd;
   vertex_distances(bpoints, ref_points, ref_tris, fit.median_mesh_to_reference, fit.max_mesh_to_reference);
   vertex_distances(used, bpoints, btris, fit.median_reference_to_mesh, fit.max_reference_to_mesh);
   fit.median_mesh_to_reference /= rd; fit.max_mesh_to_reference /= rd;
@@ -163,7 +155,7 @@ inline Reference_fit measure_reference_fit(const Hex_mesh_arrays& mesh, const st
     fit.verdict = Reference_fit::mismatched;
     why << "the reference surface does not fit the mesh (another coordinate frame, or another object?): ";
     for(std::size_t i = 0; i < reasons.size(); ++i) why << (i ? "; " : "") << reasons[i];
-    why << " (mesh boundary in " << mb << ", reference in " << rb << ")";
+    why << " (mesh boundary in " << interval_text(mb) << ", reference in " << interval_text(rb) << ")";
     fit.message = why.str();
     return fit;
   }

@@ -243,7 +243,6 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
   return surface_distance(s, r, relative_error_bound);
 }
 
-
 /// The surface error (Hausdorff distance between the boundary cut along the
 /// (0, 2) diagonals and `reference`, absolute) after the boundary vertices
 /// moved from `before` to `after`, when it was at most `error_before` at
@@ -295,27 +294,14 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
     }
     old_boxes.push_back(Box(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), q));
   }
-  for(auto f : reference.faces())
-  {
-    CGAL::Bbox_3 box;
-    for(auto v : CGAL::vertices_around_face(reference.halfedge(f), reference)) box += reference.point(v).bbox();
-    reference_boxes.push_back(Box(box, std::size_t(f)));
-  }
-  std::vector<char> near(reference.number_of_faces(), 0);
+  const std::vector<Soup_triangle> reference_triangles = surface_distance_detail::triangles_of(reference);
+  for(std::size_t t = 0; t < reference_triangles.size(); ++t)
+    reference_boxes.push_back(Box(reference_triangles[t].bbox(), t));
+  std::vector<char> near(reference_triangles.size(), 0);
   CGAL::box_intersection_d(reference_boxes.begin(), reference_boxes.end(), old_boxes.begin(), old_boxes.end(),
                            [&](const Box& r, const Box&) { near[r.info()] = 1; });
-  for(auto f : reference.faces())
-  {
-    if(!near[std::size_t(f)]) continue;
-    std::array<Vec3, 3> t;
-    int i = 0;
-    for(auto v : CGAL::vertices_around_face(reference.halfedge(f), reference))
-    {
-      const auto& p = reference.point(v);
-      t[i++] = Vec3{p.x(), p.y(), p.z()};
-    }
-    near_reference.push_back(Soup_triangle(point(t[0]), point(t[1]), point(t[2])));
-  }
+  for(std::size_t t = 0; t < reference_triangles.size(); ++t)
+    if(near[t]) near_reference.push_back(reference_triangles[t]);
   std::vector<Vec3> now(after.size());
   for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
   boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02);
@@ -327,6 +313,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   return (std::max)(mesh_to_reference, other.get());
 }
 
+/// Hausdorff distance between the boundary of `mesh` and `reference`,
+/// divided by the reference's bounding-box diagonal
 inline double relative_surface_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference)
 {
   return surface_distance(mesh, reference).relative();
