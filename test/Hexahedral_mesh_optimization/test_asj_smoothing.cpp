@@ -446,10 +446,29 @@ void test_shared_mesh()
   HMO_CHECK(err < 3e-3);
 }
 
+// exp_minus, the soft minima's exponential, against libm over its whole
+// range, and 0 from 40 on
+void test_exp_minus()
+{
+  double worst = 0.;
+  for(int i = 0; i <= 400000; ++i)
+  {
+    const double d = 40. * i / 400001.;
+    const double e = std::exp(-d);
+    worst = (std::max)(worst, std::abs(HMO::internal::asj_detail::exp_minus(d) - e) / e);
+  }
+  std::cout << "exp_minus: largest relative error " << worst << std::endl;
+  HMO_CHECK(worst < 1e-9);
+  HMO_CHECK(HMO::internal::asj_detail::exp_minus(0.) == 1.);
+  HMO_CHECK(HMO::internal::asj_detail::exp_minus(40.) == 0.);
+  HMO_CHECK(HMO::internal::asj_detail::exp_minus(std::numeric_limits<double>::infinity()) == 0.);
+}
+
 } // namespace
 
 int main(int, char** argv)
 {
+  test_exp_minus();
   test_cube();
   test_focus();
   test_curved();

@@ -340,8 +340,11 @@ private:
   /// surface error above max(tolerance, the error before the turns) gets a
   /// restoration, and is undone if that does not bring it back (the guard
   /// is then halved); so is a turn with a lowered floor that ends below the
-  /// MSJ it started from. The turns end when two in a row gain less than
-  /// `turn_min_gain`, the second with the lowered floor, or at `max_turns`.
+  /// MSJ it started from (the drop is then halved). The first turn that
+  /// gains less than `turn_min_gain` lowers the floor of the ASJ passes; from
+  /// then on, `turn_patience` turns in a row that are undone or gain too
+  /// little end the turns, as do `max_turns`, a guard below
+  /// `min_turn_guard` or a drop below `min_turn_floor_drop`.
   void turns(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
@@ -351,6 +354,7 @@ private:
     if(st.current_error < 0.) measure_error(st);
     st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
     double drop = 0.;
+    int unproductive = 0; // turns in a row undone or gaining too little
     m_turn_guard = sc.turn_guard;
     for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
     {
@@ -366,25 +370,34 @@ private:
       asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drop);
       max_min_stage(st, m_turn_guard * st.tolerance);
       const double after = quality_statistics(st.mesh).msj;
+      bool productive = true;
       if(drop > 0. && after < before)
       {
         st.mesh.points = saved;
         st.current_error = saved_error;
         report_check(st, "the last ASJ + max-min turn with a lowered floor",
                      "MSJ " + std::to_string(after) + " below " + std::to_string(before));
-        break;
+        productive = false;
+        drop *= 0.5;
+        if(drop < sc.min_turn_floor_drop) break;
       }
-      if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
+      else if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
       {
+        productive = false;
         m_turn_guard *= 0.5;
         if(m_turn_guard < sc.min_turn_guard) break;
-        continue;
       }
-      if(after < before + sc.turn_min_gain)
+      else if(after < before + sc.turn_min_gain)
       {
-        if(drop > 0.) break;
-        drop = sc.turn_floor_drop;
+        productive = false;
+        if(drop == 0.)
+        {
+          drop = sc.turn_floor_drop; // the first stall lowers the floor
+          continue;
+        }
       }
+      if(productive) unproductive = 0;
+      else if(++unproductive >= sc.turn_patience) break;
     }
   }
 

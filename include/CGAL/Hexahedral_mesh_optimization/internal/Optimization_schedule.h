@@ -107,18 +107,27 @@ struct Optimization_schedule
   double max_min_min_gain = 1e-5;
   /// the turns (one focused ASJ pass near the elements below MSJ +
   /// `turn_focus_band`, then the max-min smoothing toward the target): at
-  /// most `max_turns`; a turn that raises the MSJ by less than
+  /// most `max_turns`. The first turn that raises the MSJ by less than
   /// `turn_min_gain` lowers the ASJ pass's floor by `turn_floor_drop` for the
-  /// next ones, and a second such turn ends them. The guard of the turns and
-  /// of the final smoothing starts at `turn_guard` of the tolerance and is
-  /// halved after a turn undone for its surface error, down to
-  /// `min_turn_guard`. `turn_min_gain` 0.005, not 0.001: a turn costs a
-  /// focused ASJ pass, a max-min run and a surface check, and the last turns
-  /// of hanger_stresstest gained 0.004 of MSJ in 3 s (see the manual)
+  /// next ones; a turn with the lowered floor that ends below its start is
+  /// undone and halves the drop, down to `min_turn_floor_drop`. From then
+  /// on, `turn_patience` turns in a row that are undone or gain less than
+  /// `turn_min_gain` end them. The guard of the turns and of the final
+  /// smoothing starts at `turn_guard` of the tolerance and is halved after a
+  /// turn undone for its surface error, down to `min_turn_guard`.
+  /// `turn_min_gain` 0.005, not 0.001: a turn costs a focused ASJ pass, a
+  /// max-min run and a surface check, and the last turns of
+  /// hanger_stresstest gained 0.004 of MSJ in 3 s. Patience 2 and the
+  /// halved drop, not the first unlucky turn, end them: the turns' gains
+  /// are erratic, and ending on the first one below the threshold made the
+  /// MSJ reached depend on rounding (bunny_in 0.636 or 0.727, fertility
+  /// 0.691 or 0.739, with two exp approximations 2e-7 apart; see the manual)
   int max_turns = 40;
   double turn_focus_band = 0.2;
   double turn_min_gain = 0.005;
   double turn_floor_drop = 0.03;
+  double min_turn_floor_drop = 0.0075;
+  int turn_patience = 2;
   double turn_guard = 0.7;
   double min_turn_guard = 0.15;
   double turn_dense_sampling = 0.5;
