@@ -27,9 +27,14 @@
 #include <tbb/global_control.h>
 #endif
 
+#include <signal.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cstring>
 #include <chrono>
+#include <csignal>
 #include <limits>
 #include <memory>
 #include <exception>
@@ -68,6 +73,33 @@ bool ends_with(const std::string& s, const std::string& suffix)
       return false;
   return true;
 }
+
+/// Ctrl-C (SIGINT) and SIGTERM: the first one sets the library's stop flag
+/// (the stages stop at their next safe point, the last checked state is
+/// written and the status is 128 + the signal); the handler then reverts to
+/// the default, so a second one ends the program at once (the output is
+/// written atomically: the previous file stays intact).
+std::atomic<bool> stop_requested(false);
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig)
+{
+  stop_signal = sig;
+  stop_requested.store(true);
+}
+
+void install_stop_handlers()
+{
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof(sa));
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+const char* signal_name(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal"; }
 
 /// Progress: one line per stage (and per round of long stages).
 struct Progress_visitor : CGAL::Hexahedral_mesh_optimization::Default_optimization_visitor
@@ -120,13 +152,14 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
   auto np = HP::sharp_angle(options.sharp_angle,
             HP::relax_surface(options.relax_surface,
             HP::time_limit(time_limit,
+            HP::stop_flag(&stop_requested,
             HP::target_msj(options.target_msj,
             HP::surface_tolerance(options.surface_tolerance,
             HP::asj_smoothing(options.asj_smoothing,
             HP::pull_back(options.pull_back,
             HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                             : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor))))))))));
+            CGAL::parameters::visitor(std::ref(visitor)))))))))));
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {
@@ -145,6 +178,9 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
     log << "\n";
     if(r.time_limit_reached)
       log << "  time limit reached: the stages stopped early and the last checked state is written\n";
+    if(r.interrupted)
+      log << "  interrupted by " << signal_name(stop_signal)
+          << ": the stages stopped early and the last checked state is written\n";
   }
   return r;
 }
@@ -187,6 +223,7 @@ int main(int argc, char** argv)
   }
   std::ostream& out = std::cout;
   int exit_status = 0;
+  install_stop_handlers();
   const Clock::time_point program_start = Clock::now();
 #ifdef CGAL_LINKED_WITH_TBB
   std::unique_ptr<tbb::global_control> threads;
@@ -235,6 +272,7 @@ int main(int argc, char** argv)
     Mesh_report before;
     before.file = options.input;
     before.quality = CGAL::hex_mesh_quality(mesh);
+    before.certificate = CGAL::hex_mesh_validity_certificate(mesh);
     before.seconds = seconds_since(read_start);
     if(!options.quiet)
     {
@@ -260,11 +298,13 @@ int main(int argc, char** argv)
       const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(mesh);
       after.file = options.output;
       after.quality = CGAL::hex_mesh_quality(mesh);
+      after.certificate = CGAL::hex_mesh_validity_certificate(mesh);
       // Hausdorff distance between the output boundary and the reference
       // surface (default: the input's boundary), relative to the diagonal of
       // the reference's bounding box, as the optimiser measured it
       after.surface_error = r.surface_error;
       after.time_limit_reached = r.time_limit_reached;
+      after.interrupted = r.interrupted || stop_requested.load();
       after.warnings = r.warnings;
       after.unresolved = r.unresolved;
       print_run_warnings(r, reference_warning);
@@ -284,7 +324,7 @@ int main(int argc, char** argv)
 
     // ------------------------------------------------------- check
     bool check_failed = false;
-    if(options.check && has_output)
+    if(options.check && has_output && !stop_requested.load())
     {
       const CGAL::Hexahedral_mesh_optimization::Reference_volume_report rep =
         has_reference ? CGAL::check_hex_mesh_against_reference(mesh, reference)
@@ -302,9 +342,16 @@ int main(int argc, char** argv)
        !write_text_file(options.histogram_svg, histogram_svg(before, has_output ? &after : nullptr), error))
       return fail(error);
     // the status says whether the output can be used: elements still
-    // inverted (4) first, then a failed --check (3), then a run cut short by
-    // the time limit (5)
-    if(has_output && after.quality.inverted > 0)
+    // inverted or not certified valid (4) first, then a failed --check (3),
+    // then a run cut short by the time limit (5)
+    if(stop_requested.load())
+    {
+      std::cerr << program << ": interrupted by " << signal_name(stop_signal)
+                << (has_output ? "; the last checked state was written to '" + options.output + "'" : std::string())
+                << std::endl;
+      exit_status = 128 + (stop_signal != 0 ? int(stop_signal) : SIGINT);
+    }
+    else if(has_output && (after.quality.inverted > 0 || !after.certificate.all_valid()))
       exit_status = 4;
     else if(check_failed)
       exit_status = 3;

@@ -170,12 +170,17 @@ inline std::string usage()
   }
   s << "  -h, --help                  print this help and exit\n"
        "\n"
-       "exit status: 0 success (with OUTPUT: no element of the output is inverted), 1 the\n"
+       "exit status: 0 success (with OUTPUT: every element of the output is certified\n"
+       "valid, its Jacobian positive at the 8 corners and the centre by exact arithmetic), 1 the\n"
        "mesh could not be read, processed or written, 2 bad command line or a --reference\n"
        "that does not fit the mesh (another frame or object; nothing is written), 3 --check\n"
-       "failed, 4 elements of the output are still inverted (listed on standard error and in\n"
+       "failed, 4 elements of the output are still inverted or not certified valid (listed\n"
+       "on standard error and in\n"
        "the JSON report), 5 the time limit stopped the stages (the output has no inverted\n"
-       "element); 3, 4 and 5 write the output all the same, and 4 comes before 3 before 5\n";
+       "element); 3, 4 and 5 write the output all the same, and 4 comes before 3 before 5;\n"
+       "130 (SIGINT, Ctrl-C) or 143 (SIGTERM): interrupted, the stages stopped at their next\n"
+       "safe point and the last checked state (never worse than the input) was written; a\n"
+       "second signal ends the program at once, leaving the previous output file intact\n";
   return s.str();
 }
 

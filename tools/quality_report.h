@@ -40,10 +40,14 @@ struct Mesh_report
   double surface_error = -1.;
   /// output: whether the --time-limit hard stop fired during the optimisation
   bool time_limit_reached = false;
+  /// output: whether SIGINT or SIGTERM stopped the optimisation
+  bool interrupted = false;
   /// output: the optimisation's warnings (`Optimization_result::warnings`)
   std::vector<std::string> warnings;
   /// output: the elements still inverted, and why (`Optimization_result::unresolved`)
   std::vector<CGAL::Hexahedral_mesh_optimization::Unresolved_element> unresolved;
+  /// the exact validity certificate (`CGAL::hex_mesh_validity_certificate()`)
+  CGAL::Hexahedral_mesh_optimization::Validity_certificate certificate;
 };
 
 inline std::string format_fixed(double v, int decimals)
@@ -85,7 +89,18 @@ inline void print_quality_report(std::ostream& out, const std::string& title, co
       << "  vertices    " << q.vertices << "\n"
       << "  inverted    " << q.inverted << "\n"
       << "  MSJ         " << format_fixed(q.msj, 4) << "\n"
-      << "  ASJ         " << format_fixed(q.asj, 4) << "\n";
+      << "  ASJ         " << format_fixed(q.asj, 4) << "\n"
+      << "  certified   " << r.certificate.certified_valid() << " of " << r.certificate.hexes
+      << " valid (Jacobian > 0 at the 8 corners and the centre, exact signs)";
+  if(!r.certificate.all_valid())
+  {
+    const std::size_t shown = (std::min)(r.certificate.not_certified.size(), std::size_t(10));
+    out << "; not certified:";
+    for(std::size_t i = 0; i < shown; ++i) out << ' ' << r.certificate.not_certified[i];
+    if(shown < r.certificate.not_certified.size())
+      out << " and " << r.certificate.not_certified.size() - shown << " more";
+  }
+  out << "\n";
   if(r.surface_error >= 0.)
     out << "  surface error " << format_fixed(r.surface_error, 5)
         << " (Hausdorff distance to the reference surface, by default the input boundary, / its bounding-box diagonal)\n";
@@ -186,6 +201,12 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
     << in << "\"inverted\": " << q.inverted << ",\n"
     << in << "\"msj\": " << json_number(q.msj) << ",\n"
     << in << "\"asj\": " << json_number(q.asj) << ",\n"
+    << in << "\"certified\": " << (r.certificate.all_valid() ? "true" : "false") << ",\n"
+    << in << "\"certified_valid\": " << r.certificate.certified_valid() << ",\n"
+    << in << "\"not_certified\": [";
+  for(std::size_t i = 0; i < r.certificate.not_certified.size(); ++i)
+    s << (i ? ", " : "") << r.certificate.not_certified[i];
+  s << "],\n"
     << in << "\"histogram\": {\"min\": -1, \"max\": 1, \"bins\": " << Q::histogram_bins << ", \"counts\": [";
   for(int k = 0; k < Q::histogram_bins; ++k)
     s << (k ? ", " : "") << q.histogram[k];
@@ -196,6 +217,7 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
   {
     s << ",\n" << in << "\"surface_error\": " << (r.surface_error >= 0. ? json_number(r.surface_error) : "null");
     s << ",\n" << in << "\"time_limit_reached\": " << (r.time_limit_reached ? "true" : "false");
+    s << ",\n" << in << "\"interrupted\": " << (r.interrupted ? "true" : "false");
     s << ",\n" << in << "\"warnings\": [";
     for(std::size_t i = 0; i < r.warnings.size(); ++i) s << (i ? ", " : "") << json_string(r.warnings[i]);
     s << "]";

@@ -7,7 +7,9 @@
 #define CGAL_HEX_MESH_QUALITY_H
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/exact_validity.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
@@ -165,6 +167,49 @@ Hex_mesh_quality hex_mesh_quality(const HexMesh& mesh,
                                                Default_traits());
   const HMO::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   return HMO::quality_statistics(arrays);
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationQuality
+
+\brief The exact validity certificate of a hexahedral mesh: which
+hexahedra have a positive Jacobian determinant at their 8 corners and at
+their centre, decided with exact arithmetic on their coordinates (see
+`Hexahedral_mesh_optimization::Validity_certificate`). Where
+`hex_mesh_quality()` counts the elements whose rounded scaled Jacobian is
+negative, this says for certain that none is inverted or flat.
+
+The coordinates are taken as doubles (`geom_traits`' `Compute_x_3` and
+so on, converted with `to_double()`): the certificate is exact for kernels
+with double coordinates, such as `Exact_predicates_inexact_constructions_kernel`.
+
+\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+
+\param mesh the mesh
+\param np an optional sequence of named parameters among the ones listed below
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{geom_traits}
+    \cgalParamDescription{an instance of a geometric traits class}
+    \cgalParamType{a model of `HexMeshOptimizationTraits`}
+    \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
+*/
+template <class HexMesh, class CGAL_NP_TEMPLATE_PARAMETERS>
+Hexahedral_mesh_optimization::Validity_certificate
+hex_mesh_validity_certificate(const HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace HMO = Hexahedral_mesh_optimization::internal;
+  typedef HMO::Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
+                                               Default_traits());
+  const HMO::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  Hexahedral_mesh_optimization::Validity_certificate c;
+  c.hexes = arrays.hexes.size();
+  c.not_certified = HMO::uncertified_hexes(arrays);
+  return c;
 }
 
 } // namespace CGAL

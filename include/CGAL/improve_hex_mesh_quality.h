@@ -50,7 +50,8 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   typedef Hex_mesh_adapter<HexMesh> Adapter;
   typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
 
-  const Time_limit time_limit(time_limit_parameter(np));
+  Time_limit time_limit(time_limit_parameter(np));
+  time_limit.watch(stop_flag_parameter(np));
   const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
@@ -87,12 +88,14 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
     result.seconds += q.seconds;
     result.kept_input = result.kept_input && q.kept_input;
     result.success = q.success;
+    result.certificate = q.certificate;
     result.time_limit_reached = result.time_limit_reached || q.time_limit_reached;
+    result.interrupted = result.interrupted || q.interrupted;
   }
   else
     result = q;
   if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
-  if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached);
+  if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }
@@ -182,6 +185,11 @@ input: when nothing better is found the input is returned as it was.
   \cgalParamNBegin{time_limit}
     \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine.}
     \cgalParamType{`double`}
+    \cgalParamDefault{none}
+  \cgalParamNEnd
+  \cgalParamNBegin{stop_flag}
+    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state that passed its checks, never worse than the input), and the result's `interrupted` is true}
+    \cgalParamType{`const std::atomic<bool>*`}
     \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{visitor}

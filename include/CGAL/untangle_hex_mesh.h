@@ -19,6 +19,7 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
+#include <atomic>
 #include <limits>
 #include <vector>
 
@@ -58,6 +59,14 @@ double time_limit_parameter(const NamedParameters& np)
 {
   return parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
                                       std::numeric_limits<double>::infinity());
+}
+
+/// the `stop_flag` named parameter, or null
+template <class NamedParameters>
+const std::atomic<bool>* stop_flag_parameter(const NamedParameters& np)
+{
+  return parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::stop_flag),
+                                      static_cast<const std::atomic<bool>*>(nullptr));
 }
 
 /// the untangler's settings and the reference surface (as a soup) from named
@@ -187,6 +196,11 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd
+  \cgalParamNBegin{stop_flag}
+    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state reached, never worse than the input), and the result's `interrupted` is true}
+    \cgalParamType{`const std::atomic<bool>*`}
+    \cgalParamDefault{none}
+  \cgalParamNEnd
   \cgalParamNBegin{visitor}
     \cgalParamDescription{an object notified of stages and rounds}
     \cgalParamType{a class with the functions of `Hexahedral_mesh_optimization::Default_optimization_visitor`}
@@ -214,7 +228,8 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
   typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
 
-  const HMO::internal::Time_limit time_limit(HMO::internal::time_limit_parameter(np));
+  HMO::internal::Time_limit time_limit(HMO::internal::time_limit_parameter(np));
+  time_limit.watch(HMO::internal::stop_flag_parameter(np));
   const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   HMO::Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
@@ -233,7 +248,7 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);
   if(result.inverted_after > 0)
-    result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached);
+    result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Adapter::write_back(arrays, mesh, gt);
   return result;
 }

@@ -13,6 +13,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/IO/lcc_hex_mesh_io.h>
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
 
@@ -448,6 +449,10 @@ void test_shared_meshes()
               << q.msj << ", ASJ " << q.asj << std::endl;
     HMO_CHECK(q.hexes == p.hexes);
     HMO_CHECK(q.inverted == p.inverted);
+    // none of them has a sample within rounding of 0: the certificate
+    // refuses exactly the inverted ones
+    const CGAL::Hexahedral_mesh_optimization::Validity_certificate c = CGAL::hex_mesh_validity_certificate(m);
+    HMO_CHECK(c.hexes == q.hexes && c.not_certified.size() == q.inverted);
     HMO_CHECK_CLOSE(q.msj, p.msj, 0.0005);
     if(p.asj > -0.5)
       HMO_CHECK_CLOSE(q.asj, p.asj, 0.0005);
@@ -577,11 +582,123 @@ void test_frame_kernel()
   for(int s = 0; s < 9; ++s) HMO_CHECK_CLOSE(s9[s], 1. / std::sqrt(1.25), 1e-14);
 }
 
+/// the exact sign of det[q - p, r - p, t - p] for double points, in
+/// rationals: the certificate's reference, computed apart from it
+CGAL::Sign exact_sign(const std::array<double, 3>& p, const std::array<double, 3>& q, const std::array<double, 3>& r,
+                      const std::array<double, 3>& t)
+{
+  typedef CGAL::Exact_rational Q;
+  Q a[3], b[3], c[3];
+  for(int d = 0; d < 3; ++d)
+  {
+    a[d] = Q(q[d]) - Q(p[d]);
+    b[d] = Q(r[d]) - Q(p[d]);
+    c[d] = Q(t[d]) - Q(p[d]);
+  }
+  return CGAL::sign(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                    a[2] * (b[0] * c[1] - b[1] * c[0]));
+}
+
+/// Parallelepipeds whose three edge vectors are coplanar to within about
+/// 1e-17 of their lengths: every Jacobian sample is then within rounding of
+/// 0. The certificate must give the exact sign of all 9 (computed here in
+/// rationals from the coordinates), where the rounded scaled Jacobian's sign
+/// is wrong for some of them.
+void test_validity_certificate()
+{
+  namespace HI = CGAL::Hexahedral_mesh_optimization::internal;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  std::uniform_real_distribution<double> tiny(-3e-17, 3e-17);
+  Mesh m;
+  std::vector<std::size_t> expected_uncertified;
+  int double_wrong = 0, positive = 0;
+  for(int k = 0; k < 2000; ++k)
+  {
+    const std::array<double, 3> o{{10. + u(random), u(random), u(random)}};
+    const std::array<double, 3> e1{{1. + 0.3 * u(random), 0.3 * u(random), 0.3 * u(random)}};
+    const std::array<double, 3> e2{{0.3 * u(random), 1. + 0.3 * u(random), 0.3 * u(random)}};
+    const double a = 0.5 + 0.2 * u(random), b = 0.5 + 0.2 * u(random);
+    const std::array<double, 3> n{{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]}};
+    const double t = tiny(random);
+    std::array<double, 3> e3;
+    for(int d = 0; d < 3; ++d) e3[d] = a * e1[d] + b * e2[d] + t * n[d];
+    std::array<std::array<double, 3>, 8> p;
+    for(int d = 0; d < 3; ++d)
+    {
+      p[0][d] = o[d];
+      p[1][d] = o[d] + e1[d];
+      p[3][d] = o[d] + e2[d];
+      p[4][d] = o[d] + e3[d];
+      p[2][d] = p[1][d] + e2[d];
+      p[5][d] = p[1][d] + e3[d];
+      p[7][d] = p[3][d] + e3[d];
+      p[6][d] = p[2][d] + e3[d];
+    }
+    // the exact signs of the 9 samples, from the coordinates
+    bool valid = true;
+    for(int i = 0; i < 8; ++i)
+    {
+      const int* n = HI::hex_corner_edges[i];
+      valid = valid && exact_sign(p[i], p[n[0]], p[n[1]], p[n[2]]) == CGAL::POSITIVE;
+    }
+    {
+      typedef CGAL::Exact_rational Q;
+      Q x[3][3];
+      for(int j = 0; j < 3; ++j)
+        for(int d = 0; d < 3; ++d)
+        {
+          Q sum(0);
+          for(int c = 0; c < 4; ++c) sum += Q(p[HI::hex_axis_plus[j][c]][d]) - Q(p[HI::hex_axis_minus[j][c]][d]);
+          x[j][d] = sum;
+        }
+      const Q det = x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+                    x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+      valid = valid && CGAL::sign(det) == CGAL::POSITIVE;
+    }
+    Hex_points h;
+    std::array<std::size_t, 8> ids;
+    for(int i = 0; i < 8; ++i)
+    {
+      h[i] = Point(p[i][0], p[i][1], p[i][2]);
+      ids[i] = m.points.size();
+      m.points.push_back(h[i]);
+    }
+    m.hexahedra.push_back(ids);
+    if(!valid) expected_uncertified.push_back(m.hexahedra.size() - 1);
+    positive += valid;
+    const bool double_says_valid = CGAL::hex_scaled_jacobian(h) > 0.;
+    double_wrong += double_says_valid != valid;
+  }
+  const CGAL::Hexahedral_mesh_optimization::Validity_certificate c = CGAL::hex_mesh_validity_certificate(m);
+  std::cout << "validity certificate: " << c.certified_valid() << " of " << c.hexes << " certified, "
+            << positive << " valid by exact rationals; the rounded scaled Jacobian's sign was wrong on "
+            << double_wrong << std::endl;
+  HMO_CHECK(c.hexes == 2000);
+  HMO_CHECK(c.not_certified == expected_uncertified);
+  HMO_CHECK(double_wrong > 0);           // the case is one rounding gets wrong
+  HMO_CHECK(positive > 100 && positive < 1900); // both signs occur
+
+  // the unit cube and an inverted one
+  Mesh two;
+  const Hex_points cube = box(1, 1, 1);
+  const Hex_points mirrored = transformed(cube, [](const Point& q) { return Point(-q.x() + 3., q.y(), q.z()); });
+  for(const Hex_points& hx : {cube, mirrored})
+  {
+    std::array<std::size_t, 8> ids;
+    for(int i = 0; i < 8; ++i) { ids[i] = two.points.size(); two.points.push_back(hx[i]); }
+    two.hexahedra.push_back(ids);
+  }
+  const CGAL::Hexahedral_mesh_optimization::Validity_certificate c2 = CGAL::hex_mesh_validity_certificate(two);
+  HMO_CHECK(c2.certified_valid() == 1 && c2.not_certified == std::vector<std::size_t>{1} && !c2.all_valid());
+}
+
 } // namespace
 
 int main()
 {
   test_scaled_jacobian();
+  test_validity_certificate();
   test_frame_kernel();
   test_quality_statistics();
   test_linear_cell_complex();

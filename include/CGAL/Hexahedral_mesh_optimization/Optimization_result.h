@@ -43,10 +43,33 @@ struct Unresolved_element
   /// limit fired or not).
   /// `region_exhausted`: it has an interior vertex in an inverted frame,
   /// and the stages' widest regions around it did not free it.
-  /// `time_limit`: the `time_limit` hard stop fired before the stages were done.
+  /// `time_limit`: a hard stop (`time_limit`, or `stop_flag`) fired before
+  /// the stages were done.
   enum Reason { locked, region_exhausted, time_limit };
   Reason reason = region_exhausted;
   std::string details;          ///< which frames are inverted, in words
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+The exact validity certificate of a hexahedral mesh
+(`hex_mesh_validity_certificate()`): a hexahedron is certified valid when
+the Jacobian determinant is positive, decided exactly on its coordinates,
+at its 8 corners (the orientation of each corner tetrahedron, by CGAL's
+exact predicate) and at its centre (the principal axes: interval
+arithmetic, exact rationals when the interval contains 0). These are the 9
+samples of the Verdict scaled Jacobian; their rounded values can have the
+wrong sign within a few ulps of zero, the certificate cannot. A hexahedron
+with a zero sample (flat) is not certified either.
+*/
+struct Validity_certificate
+{
+  std::size_t hexes = 0;                  ///< the number of hexahedra examined
+  std::vector<std::size_t> not_certified; ///< the indices of those not certified valid, in index order
+  /// the number of hexahedra certified valid
+  std::size_t certified_valid() const { return hexes - not_certified.size(); }
+  /// whether every hexahedron is certified valid
+  bool all_valid() const { return not_certified.empty(); }
 };
 
 /*!
@@ -83,12 +106,19 @@ struct Optimization_result
   /// whether the `time_limit` hard stop fired (the result is then the last
   /// checked state the run had reached when it stopped)
   bool time_limit_reached = false;
+  /// whether the `stop_flag` hard stop fired (the result is then, as for the
+  /// time limit, the last checked state the run had reached when it stopped)
+  bool interrupted = false;
   /// what the caller should know and that did not stop the run, e.g. a
   /// reference surface the boundary starts far from (`Reference_fit`)
   std::vector<std::string> warnings;
   /// the elements still inverted at the end (empty when `inverted_after` is
   /// 0), in index order, each with the reason it was not freed
   std::vector<Unresolved_element> unresolved;
+  /// the exact validity certificate of the mesh returned; the rule "never
+  /// worse than the input" also compares the numbers of hexahedra not
+  /// certified valid (a result with more is replaced by the input)
+  Validity_certificate certificate;
   std::vector<Stage_report> stages;
 };
 

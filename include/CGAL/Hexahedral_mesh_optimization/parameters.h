@@ -48,6 +48,7 @@ enum relax_surface_t { relax_surface };
 enum local_iterations_t { local_iterations };
 enum barrier_fallback_t { barrier_fallback };
 enum time_limit_t { time_limit };
+enum stop_flag_t { stop_flag };
 enum target_msj_t { target_msj };
 enum surface_tolerance_t { surface_tolerance };
 enum pull_back_t { pull_back };
@@ -97,6 +98,10 @@ CGAL_HMO_ADD_PARAMETER(local_iterations)
 CGAL_HMO_ADD_PARAMETER(barrier_fallback)
 /// hard stop in seconds of wall-clock time (default: none); decides nothing else
 CGAL_HMO_ADD_PARAMETER(time_limit)
+/// a `const std::atomic<bool>*` that another thread or a signal handler may
+/// set: the run then stops at its next safe point, as for `time_limit`, and
+/// the result's `interrupted` is true (default: none)
+CGAL_HMO_ADD_PARAMETER(stop_flag)
 /// the MSJ the quality stages aim at; 1 (default): as high as they get it
 CGAL_HMO_ADD_PARAMETER(target_msj)
 /// largest surface error (relative to the reference's bounding-box diagonal)

@@ -158,7 +158,8 @@ public:
     res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
                           ? st.current_error
                           : relative_surface_error(mesh, st.reference);
-    res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
+    res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
     res.seconds = seconds_since(start);
     return res;
   }

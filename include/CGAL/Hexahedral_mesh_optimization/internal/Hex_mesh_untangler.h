@@ -231,7 +231,8 @@ public:
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
     res.success = q1.inverted == 0;
-    res.time_limit_reached = m_s.time_limit && m_s.time_limit->fired();
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
+    res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
     if(measure_surface_error) res.surface_error = surface_error(mesh, input);
     res.seconds = since(start);
     return res;

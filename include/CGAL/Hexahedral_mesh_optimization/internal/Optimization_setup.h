@@ -18,6 +18,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Ideal_angles.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/exact_validity.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
 
 #include <algorithm>
@@ -67,8 +68,9 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
 }
 
 /// If `mesh` is worse than `input` (quality `before`), puts the input back
-/// and sets `res.kept_input`; fills the "after" figures of `res` either way
-/// and returns the quality of what is returned. "Worse": more inverted
+/// and sets `res.kept_input`; fills the "after" figures and the certificate
+/// of `res` either way and returns the quality of what is returned.
+/// "Worse": more hexes not certified valid (exact_validity.h), more inverted
 /// elements, or as many and an MSJ lower by more than
 /// `msj_rounding_tolerance`: undoing the normalisation rounds the
 /// coordinates, which alone can move a stuck minimum by an ulp, and must not
@@ -79,14 +81,21 @@ inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const Hex_m
                                               const Quality_statistics& before, Optimization_result& res)
 {
   Quality_statistics after = quality_statistics(mesh);
+  std::vector<std::size_t> uncertified = uncertified_hexes(mesh);
   constexpr double msj_rounding_tolerance = 1e-12;
-  if(after.inverted > before.inverted ||
-     (after.inverted == before.inverted && after.msj < before.msj - msj_rounding_tolerance))
+  bool worse = after.inverted > before.inverted ||
+               (after.inverted == before.inverted && after.msj < before.msj - msj_rounding_tolerance);
+  if(!worse && !uncertified.empty())
+    worse = uncertified.size() > uncertified_hexes(input).size();
+  if(worse)
   {
     mesh = input;
     after = before;
     res.kept_input = true;
+    uncertified = uncertified_hexes(mesh);
   }
+  res.certificate.hexes = mesh.hexes.size();
+  res.certificate.not_certified = std::move(uncertified);
   res.inverted_after = after.inverted; res.msj_after = after.msj; res.asj_after = after.asj;
   return after;
 }

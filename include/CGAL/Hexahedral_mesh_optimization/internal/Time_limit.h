@@ -15,6 +15,10 @@
 // answers yes for good, every stage then stops where it is, the drivers go
 // back to the last state they checked, and the result says that the limit
 // fired. Without a limit (the default) `reached()` never reads the clock.
+//
+// A stop flag (the `stop_flag` named parameter: Ctrl-C in the tool) is the
+// same hard stop, set from outside: `reached()` answers yes once it is set,
+// and `interrupted()` says that this, not the clock, fired.
 
 #include <atomic>
 #include <chrono>
@@ -47,9 +51,19 @@ public:
 
   bool is_limited() const { return m_limited; }
 
-  /// whether the limit has passed (sticky; safe to call from several threads)
+  /// also stop once `*flag` is true (null: no flag)
+  void watch(const std::atomic<bool>* flag) { m_flag = flag; }
+
+  /// whether the limit has passed or the stop flag is set (sticky; safe to
+  /// call from several threads)
   bool reached() const
   {
+    if(m_flag != nullptr && m_flag->load(std::memory_order_relaxed))
+    {
+      m_interrupted.store(true, std::memory_order_relaxed);
+      m_reached.store(true, std::memory_order_relaxed);
+      return true;
+    }
     if(!m_limited) return false;
     if(m_reached.load(std::memory_order_relaxed)) return true;
     if(Clock::now() < m_deadline) return false;
@@ -59,9 +73,15 @@ public:
 
   /// whether `reached()` has answered yes (does not read the clock)
   bool fired() const { return m_reached.load(std::memory_order_relaxed); }
+  /// whether it fired because of the stop flag
+  bool interrupted() const { return m_interrupted.load(std::memory_order_relaxed); }
+  /// whether it fired because of the clock
+  bool limit_passed() const { return fired() && !interrupted(); }
 
 private:
   bool m_limited = false;
+  const std::atomic<bool>* m_flag = nullptr;
+  mutable std::atomic<bool> m_interrupted{false};
   Clock::time_point m_deadline;
   mutable std::atomic<bool> m_reached{false};
 };

@@ -10,6 +10,14 @@
 // temporary file in the target's directory, which is renamed over the target
 // by commit(). If commit() is not reached (error, exception), the destructor
 // removes the temporary and the target is left as it was.
+//
+// On Linux the temporary is first an unnamed file (O_TMPFILE): it gets a
+// name (linkat through /proc/self/fd) only once its data is written and
+// synced, just before the rename. A process killed while writing (SIGKILL,
+// power loss after the sync) then leaves no temporary behind, only the
+// target as it was; the window where a named temporary exists is the
+// link-and-rename. Where O_TMPFILE or /proc is missing, the temporary is
+// named from the start, as elsewhere.
 
 #include <atomic>
 #include <cerrno>
@@ -23,6 +31,12 @@
 #if defined(__unix__) || defined(__APPLE__)
 #include <unistd.h>
 #define CGAL_HMO_IO_HAVE_FSYNC 1
+#endif
+#if defined(__linux__)
+#include <fcntl.h>
+#if defined(O_TMPFILE)
+#define CGAL_HMO_IO_HAVE_TMPFILE 1
+#endif
 #endif
 
 namespace CGAL {
@@ -44,24 +58,23 @@ public:
   {
     discard();
     target_ = target;
-    static std::atomic<unsigned long> counter(0);
-    const unsigned long long stamp = static_cast<unsigned long long>(
-      std::chrono::steady_clock::now().time_since_epoch().count());
-    for(int attempt = 0; attempt < 100; ++attempt)
+#ifdef CGAL_HMO_IO_HAVE_TMPFILE
     {
-      temp_ = target + "." + std::to_string((stamp + 7919ull * counter++) % 1000000007ull) + ".tmp";
-      errno = 0;
-      // "x": fails if the name exists, so a concurrent writer is never clobbered
-      file_ = std::fopen(temp_.c_str(), "wbx");
-      if(file_ != nullptr)
-        return true;
-      if(errno != EEXIST)
-        break;
+      const std::filesystem::path parent = std::filesystem::path(target).parent_path();
+      const int fd = ::open(parent.empty() ? "." : parent.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+      if(fd >= 0)
+      {
+        file_ = ::fdopen(fd, "wb");
+        if(file_ != nullptr)
+        {
+          unnamed_ = true;
+          return true;
+        }
+        ::close(fd);
+      }
     }
-    error = std::string("cannot create a temporary file next to the target: ") +
-            (errno != 0 ? std::strerror(errno) : "unknown error");
-    temp_.clear();
-    return false;
+#endif
+    return open_named(error);
   }
 
   bool write(const char* data, std::size_t n)
@@ -96,6 +109,12 @@ public:
       errno_ = errno;
     }
 #endif
+    if(!failed_ && unnamed_ && !give_name())
+    {
+      error = std::string("cannot name the temporary file: ") + std::strerror(errno_);
+      discard();
+      return false;
+    }
     const int closed = std::fclose(file_);
     file_ = nullptr;
     if(!failed_ && closed != 0)
@@ -134,12 +153,68 @@ public:
       std::remove(temp_.c_str());
       temp_.clear();
     }
+    unnamed_ = false;
     failed_ = false;
     errno_ = 0;
   }
 
 private:
+  /// a fresh name next to the target
+  std::string next_temp_name()
+  {
+    static std::atomic<unsigned long> counter(0);
+    const unsigned long long stamp = static_cast<unsigned long long>(
+      std::chrono::steady_clock::now().time_since_epoch().count());
+    return target_ + "." + std::to_string((stamp + 7919ull * counter++) % 1000000007ull) + ".tmp";
+  }
+
+#ifdef CGAL_HMO_IO_HAVE_TMPFILE
+  /// links the unnamed temporary to a fresh name (sets `temp_`); false with
+  /// `errno_` set on failure
+  bool give_name()
+  {
+    const std::string self = "/proc/self/fd/" + std::to_string(::fileno(file_));
+    for(int attempt = 0; attempt < 100; ++attempt)
+    {
+      const std::string name = next_temp_name();
+      if(::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0)
+      {
+        temp_ = name;
+        unnamed_ = false;
+        return true;
+      }
+      if(errno != EEXIST) break;
+    }
+    errno_ = errno;
+    failed_ = true;
+    return false;
+  }
+#else
+  bool give_name() { return true; }
+#endif
+
+  bool open_named(std::string& error)
+  {
+    for(int attempt = 0; attempt < 100; ++attempt)
+    {
+      temp_ = next_temp_name();
+      errno = 0;
+      // "x": fails if the name exists, so a concurrent writer is never clobbered
+      file_ = std::fopen(temp_.c_str(), "wbx");
+      if(file_ != nullptr)
+        return true;
+      if(errno != EEXIST)
+        break;
+    }
+    error = std::string("cannot create a temporary file next to the target: ") +
+            (errno != 0 ? std::strerror(errno) : "unknown error");
+    temp_.clear();
+    return false;
+  }
+
+
   std::string target_;
+  bool unnamed_ = false;
   std::string temp_;
   std::FILE* file_ = nullptr;
   bool failed_ = false;
