@@ -1,10 +1,16 @@
 #!/bin/bash
 # Installs the Debian 12 packages that building and testing the package need,
 # if any is missing. Run as root (or with sudo available); non-interactive.
+# usage: install_dependencies.sh [--tests]
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 
 packages=(cmake make g++ libcgal-dev libeigen3-dev libboost-dev libtet1.5-dev libtbb-dev)
+# --tests: also what the whole test suite needs (clang and its runtime for
+# the fuzz targets of the readers)
+if [ "${1:-}" = "--tests" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

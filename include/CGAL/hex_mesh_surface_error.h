@@ -13,14 +13,17 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_OFF_soup.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -239,14 +242,20 @@ namespace IO {
 /*!
 \ingroup PkgHexahedralMeshOptimizationRef
 
-\brief reads a reference surface (any format `CGAL::IO::read_polygon_mesh()`
+\brief reads a reference surface (any format `CGAL::IO::read_polygon_soup()`
 reads: OBJ, OFF, STL, PLY, ...) into `mesh` and triangulates its faces when
 needed.
 
-A file that is not a clean 2-manifold (an STL triangle soup, duplicated or
-non-manifold vertices, inconsistent orientations) is read again through
-`CGAL::Polygon_mesh_processing::IO::read_polygon_mesh()`, which repairs and
-orients the polygon soup first.
+The file is read as a polygon soup and checked first: every face has at
+least 3 vertices, every vertex index is in range and every coordinate is
+finite (otherwise the error names the face or vertex). A soup that is not a
+clean 2-manifold (an STL triangle soup, duplicated or non-manifold vertices,
+a vertex repeated in a face, inconsistent orientations) is repaired and
+oriented (`Polygon_mesh_processing::repair_polygon_soup()` and
+`orient_polygon_soup()`) before the mesh is built. Faces are cut into
+triangles first: a quadrilateral along its shorter diagonal, a larger face
+into a fan from its first vertex. ASCII OFF files are read by the package's
+own reader, which names the line of a bad token.
 
 \tparam PolygonMesh a model of `MutableFaceGraph` with an internal point
         property map, for example `CGAL::Surface_mesh<Point_3>`
@@ -256,11 +265,14 @@ orients the polygon soup first.
 \param error if not null, receives a message when reading fails
 
 \returns `false`, with a message, when the file cannot be opened or read,
-         holds no face, or has faces that cannot be triangulated
+         fails the checks above, or holds no face
 */
 template <class PolygonMesh>
 bool read_reference_surface(const std::string& fname, PolygonMesh& mesh, std::string* error = nullptr)
 {
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  typedef typename boost::property_map<PolygonMesh, vertex_point_t>::type Vertex_point_map;
+  typedef typename boost::property_traits<Vertex_point_map>::value_type Point;
   auto fail = [&](const std::string& msg) {
     if(error != nullptr)
       *error = msg;
@@ -273,26 +285,74 @@ bool read_reference_surface(const std::string& fname, PolygonMesh& mesh, std::st
     if(!probe)
       return fail("cannot open reference surface '" + fname + "'");
   }
-  // a clean 2-manifold file is read as is; anything else (STL triangle soups,
-  // duplicated or non-manifold vertices, inconsistent orientation) goes
-  // through the polygon-soup repair and orientation of Polygon_mesh_processing
-  bool ok = CGAL::IO::read_polygon_mesh(fname, mesh, parameters::verbose(false));
-  if(!ok || faces(mesh).empty())
+  // Read as a polygon soup and check it before building anything: CGAL's
+  // mesh builders trust the face indices of the file (a face index out of
+  // range in an OBJ file overflowed a buffer in CGAL 5.5's builder; found by
+  // fuzzing, test/Hexahedral_mesh_optimization/fuzz/regressions/obj).
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t> > polygons;
+  const std::string extension = fname.size() >= 4 ? fname.substr(fname.size() - 4) : std::string();
+  if(extension == ".off" || extension == ".OFF")
   {
-    CGAL::clear(mesh);
-    ok = CGAL::Polygon_mesh_processing::IO::read_polygon_mesh(fname, mesh, parameters::verbose(false));
+    std::string why;
+    if(!Hexahedral_mesh_optimization::internal::io::read_OFF_soup(fname, points, polygons, why)) return fail(why);
   }
-  if(!ok)
+  else if(!CGAL::IO::read_polygon_soup(fname, points, polygons, parameters::verbose(false)))
     return fail("cannot read a surface from '" + fname +
-                "': unsupported extension (use OBJ, OFF, STL or PLY), malformed file,"
-                " or faces that do not form an orientable surface");
+                "': unsupported extension (use OBJ, OFF, STL or PLY) or malformed file");
+  if(polygons.empty())
+    return fail("reference surface '" + fname + "' has no face");
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(!std::isfinite(CGAL::to_double(points[v].x())) || !std::isfinite(CGAL::to_double(points[v].y())) ||
+       !std::isfinite(CGAL::to_double(points[v].z())))
+      return fail("reference surface '" + fname + "': vertex " + std::to_string(v) +
+                  " has a coordinate that is not a finite number");
+  for(std::size_t f = 0; f < polygons.size(); ++f)
+  {
+    if(polygons[f].size() < 3)
+      return fail("reference surface '" + fname + "': face " + std::to_string(f) + " has " +
+                  std::to_string(polygons[f].size()) + " vertices (at least 3 needed)");
+    for(std::size_t v : polygons[f])
+      if(v >= points.size())
+        return fail("reference surface '" + fname + "': face " + std::to_string(f) + " uses vertex " +
+                    std::to_string(v) + ", out of range (the file has " + std::to_string(points.size()) +
+                    " vertices, numbered from 0 here)");
+  }
+  // triangles: a quad is cut along its shorter diagonal, a larger face into
+  // a fan from its first vertex (CGAL's triangulate_faces, a constrained
+  // triangulation, bound a reference to null on a degenerate face: found
+  // by fuzzing, as above)
+  {
+    std::vector<std::vector<std::size_t> > triangles;
+    triangles.reserve(polygons.size());
+    for(const std::vector<std::size_t>& f : polygons)
+    {
+      if(f.size() == 4 && CGAL::squared_distance(points[f[1]], points[f[3]]) <
+                            CGAL::squared_distance(points[f[0]], points[f[2]]))
+      {
+        triangles.push_back({f[0], f[1], f[3]});
+        triangles.push_back({f[1], f[2], f[3]});
+        continue;
+      }
+      for(std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
+    }
+    polygons.swap(triangles);
+  }
+  // a clean 2-manifold is built as is; anything else (STL triangle soups,
+  // duplicated or non-manifold vertices, repeated vertices in a face,
+  // inconsistent orientation) is repaired and oriented first
+  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+  {
+    PMP::repair_polygon_soup(points, polygons, parameters::verbose(false));
+    PMP::orient_polygon_soup(points, polygons);
+    if(polygons.empty())
+      return fail("reference surface '" + fname + "' has no face left once degenerate faces are removed");
+    if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+      return fail("the faces of reference surface '" + fname + "' do not form an orientable surface");
+  }
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if(faces(mesh).empty())
     return fail("reference surface '" + fname + "' has no face");
-  if(!CGAL::is_triangle_mesh(mesh))
-  {
-    if(!CGAL::Polygon_mesh_processing::triangulate_faces(mesh) || !CGAL::is_triangle_mesh(mesh))
-      return fail("the faces of reference surface '" + fname + "' cannot be triangulated");
-  }
   return true;
 }
 

@@ -481,6 +481,42 @@ void test_surface_error()
   HMO_CHECK(!CGAL::IO::read_reference_surface(unknown, bad, &err));
   HMO_CHECK(!err.empty());
   std::remove(unknown.c_str());
+
+  // what fuzzing found in CGAL 5.5's readers is refused with a message:
+  // a negative face index in an OFF file (undefined behaviour in CGAL's
+  // scanner), a face index out of range in an OBJ file (a buffer overflow
+  // in CGAL's builder), a degenerate face (CGAL's triangulate_faces)
+  const char* cube_vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
+  const struct
+  {
+    const char* name;
+    std::string text;
+    const char* expected; // in the message; null: reads
+  } cases[] = {
+    {"neg.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 -1 2\n", "neg.off:7: face 0: '-1' is not a vertex index"},
+    {"nan.off", "OFF 3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n", "nan.off:3: vertex 1: 'nan' is not a finite number"},
+    {"short.off", "OFF\n# comment\n3 1 0\n0 0 0\n1 0 0\n", "short.off:5: the file ends at vertex 2 of 3"},
+    {"huge.off", "OFF\n4000000000 1 0\n", "number of vertices '4000000000' is not a count the file can hold"},
+    {"range.obj", std::string(cube_vertices) + "f 1 2 3\nf 1 2 99\n", "malformed file"},
+    {"quads.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+                  "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5 255 0 0\n", nullptr},
+  };
+  for(const auto& c : cases)
+  {
+    {
+      std::ofstream out(c.name);
+      out << c.text;
+    }
+    err.clear();
+    const bool read = CGAL::IO::read_reference_surface(c.name, bad, &err);
+    std::cout << c.name << ": " << (read ? "read, " + std::to_string(bad.number_of_faces()) + " triangles" : err)
+              << std::endl;
+    if(c.expected)
+      HMO_CHECK(!read && err.find(c.expected) != std::string::npos);
+    else
+      HMO_CHECK(read && bad.number_of_faces() == 12 && CGAL::is_triangle_mesh(bad) && CGAL::is_closed(bad));
+    std::remove(c.name);
+  }
 }
 
 // The culled one-sided distance agrees with CGAL's bounded-error Hausdorff
