@@ -39,6 +39,17 @@ std::array<Vec3, 8> corner_positions(const PointRange& corners, const NamedParam
   return p;
 }
 
+/// the flat arrays of `mesh`, its points converted by the `geom_traits` of
+/// `np` (default: the kernel of its point type)
+template <class HexMesh, class NamedParameters>
+Hex_mesh_arrays extract_with_traits(const HexMesh& mesh, const NamedParameters& np)
+{
+  typedef Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+  return Adapter::extract(mesh, parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
+                                                             Default_traits()));
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 
@@ -129,11 +140,7 @@ std::vector<double> hex_mesh_scaled_jacobians(const HexMesh& mesh,
                                               const CGAL_NP_CLASS& np = parameters::default_values())
 {
   namespace HMO = Hexahedral_mesh_optimization::internal;
-  typedef HMO::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                               Default_traits());
-  return HMO::scaled_jacobians(Adapter::extract(mesh, gt));
+  return HMO::scaled_jacobians(HMO::extract_with_traits(mesh, np));
 }
 
 /*!
@@ -161,12 +168,7 @@ Hex_mesh_quality hex_mesh_quality(const HexMesh& mesh,
                                   const CGAL_NP_CLASS& np = parameters::default_values())
 {
   namespace HMO = Hexahedral_mesh_optimization::internal;
-  typedef HMO::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                               Default_traits());
-  const HMO::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
-  return HMO::quality_statistics(arrays);
+  return HMO::quality_statistics(HMO::extract_with_traits(mesh, np));
 }
 
 /*!
@@ -201,11 +203,7 @@ Hexahedral_mesh_optimization::Validity_certificate
 hex_mesh_validity_certificate(const HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_values())
 {
   namespace HMO = Hexahedral_mesh_optimization::internal;
-  typedef HMO::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                               Default_traits());
-  const HMO::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  const HMO::Hex_mesh_arrays arrays = HMO::extract_with_traits(mesh, np);
   Hexahedral_mesh_optimization::Validity_certificate c;
   c.hexes = arrays.hexes.size();
   c.not_certified = HMO::uncertified_hexes(arrays);
