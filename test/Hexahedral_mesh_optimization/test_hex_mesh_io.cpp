@@ -7,6 +7,8 @@
 
 #include "test_util.h"
 
+#include <sys/resource.h>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
@@ -379,6 +381,20 @@ void test_medit_errors()
                            {"Vertices: expected 8 records, found only 3 before 'Hexahedra'", "line 8"}, 8);
   expect_read_failure_text("truncated3.mesh", medit_header + medit_cube_vertices + "Hexahedra\n2\n1 2 3 4 5 6 7 8 0\n1 2",
                            {"Hexahedra: expected 2 records, file ends after 1 and a partial record"});
+  {
+    // hostile counts (more records than the file can hold, beyond 32-bit
+    // indices): refused with the count and where the file ends, before
+    // anything of that size is allocated (the peak memory stays put)
+    struct rusage before, after;
+    getrusage(RUSAGE_SELF, &before);
+    expect_read_failure_text("hostile.mesh", medit_header + "Vertices\n4000000000\n0 0 0 0\n",
+                             {"Vertices: expected 4000000000 records, file ends after 1"});
+    expect_read_failure_text("hostile2.mesh", medit_header + medit_cube_vertices + "Hexahedra\n3000000000\n1 2 3 4 5 6 7 8 0\n",
+                             {"Hexahedra: expected 3000000000 records, file ends after 1"});
+    getrusage(RUSAGE_SELF, &after);
+    std::cout << "hostile counts: peak memory " << before.ru_maxrss << " -> " << after.ru_maxrss << " KB" << std::endl;
+    HMO_CHECK(after.ru_maxrss - before.ru_maxrss < 64 * 1024);
+  }
   expect_read_failure_text("token.mesh", medit_header + "Vertices\n8\n0 0 0 0\n1 abc 0 0\n",
                            {"non-numeric token 'abc' in Vertices record 2 (line 6)"}, 6);
   expect_read_failure_text("float_index.mesh", medit_header + medit_cube_vertices + "Hexahedra\n1\n1 2 3 4.0 5 6 7 8 0\n",
