@@ -45,6 +45,7 @@ public:
   {
     m_limited = std::isfinite(seconds) && seconds > 0.;
     m_reached.store(false);
+    m_interrupted.store(false);
     if(m_limited)
       m_deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   }
@@ -58,6 +59,7 @@ public:
   /// call from several threads)
   bool reached() const
   {
+    if(m_reached.load(std::memory_order_relaxed)) return true;
     if(m_flag != nullptr && m_flag->load(std::memory_order_relaxed))
     {
       m_interrupted.store(true, std::memory_order_relaxed);
@@ -65,7 +67,6 @@ public:
       return true;
     }
     if(!m_limited) return false;
-    if(m_reached.load(std::memory_order_relaxed)) return true;
     if(Clock::now() < m_deadline) return false;
     m_reached.store(true, std::memory_order_relaxed);
     return true;
