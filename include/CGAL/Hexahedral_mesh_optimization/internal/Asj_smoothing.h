@@ -335,81 +335,17 @@ public:
                const Asj_smoothing_settings& s)
     : m_topo(topo), m_target(target), m_p(points), m_s(s), m_start(points)
   {
-    const std::size_t nv = topo.number_of_vertices(), nh = topo.number_of_hexes();
-    CGAL_precondition(points.size() == nv);
-    CGAL_precondition(target == nullptr || target->number_of_vertices() == nv);
-    m_kind.assign(nv, FREE);
-    for(std::size_t v = 0; v < nv; ++v)
-    {
-      if(!topo.is_boundary_vertex(v)) continue;
-      m_kind[v] = FIXED;
-      if(target == nullptr || !s.move_boundary) continue;
-      if(target->vertex_class(v) == Vertex_class::regular) m_kind[v] = ON_SURFACE;
-    }
-    // sharp vertices: their two neighbours along the feature line
-    m_line.assign(nv, {nv, nv});
-    if(target != nullptr && s.move_boundary)
-      for(const Target_surface::Feature_line& l : target->feature_lines())
-      {
-        const std::size_t n = l.vertices.size();
-        for(std::size_t j = 0; j < n; ++j)
-        {
-          if(!l.closed && (j == 0 || j + 1 == n)) continue;
-          const std::size_t v = target->boundary().vertices[l.vertices[j]];
-          if(target->vertex_class(v) != Vertex_class::sharp || !topo.is_boundary_vertex(v)) continue;
-          m_line[v] = {target->boundary().vertices[l.vertices[(j + n - 1) % n]],
-                       target->boundary().vertices[l.vertices[(j + 1) % n]]};
-          m_kind[v] = ON_LINE;
-        }
-      }
-    // boundary quads around each vertex
-    const auto& bf = topo.boundary_faces();
-    m_bq_off.assign(nv + 1, 0);
-    for(const auto& q : bf) for(std::size_t v : q) ++m_bq_off[v + 1];
-    for(std::size_t v = 0; v < nv; ++v) m_bq_off[v + 1] += m_bq_off[v];
-    m_bq.resize(m_bq_off[nv]);
-    {
-      std::vector<std::size_t> fill(m_bq_off.begin(), m_bq_off.end() - 1);
-      for(std::size_t q = 0; q < bf.size(); ++q) for(std::size_t v : bf[q]) m_bq[fill[v]++] = q;
-    }
+    CGAL_precondition(points.size() == topo.number_of_vertices());
+    CGAL_precondition(target == nullptr || target->number_of_vertices() == topo.number_of_vertices());
+    classify_vertices();
+    index_boundary_quads();
     m_check_surface = target != nullptr && s.move_boundary && std::isfinite(s.max_surface_deviation);
-    // for the built-in deviation: the boundary quads within two rings of
-    // each moving boundary vertex, its own first
-    m_ring_off.assign(nv + 1, 0);
     if(m_check_surface && (!s.guard || s.start_deviation_budget > 0.))
-    {
-      std::vector<std::size_t> ring;
-      for(std::size_t v = 0; v < nv; ++v)
-      {
-        if(m_kind[v] == ON_SURFACE || m_kind[v] == ON_LINE)
-        {
-          const std::size_t first = ring.size();
-          for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k) ring.push_back(m_bq[k]);
-          for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
-            for(std::size_t u : bf[m_bq[k]])
-              for(std::size_t j = m_bq_off[u]; j < m_bq_off[u + 1]; ++j)
-                if(std::find(ring.begin() + first, ring.end(), m_bq[j]) == ring.end()) ring.push_back(m_bq[j]);
-        }
-        m_ring_off[v + 1] = ring.size();
-      }
-      m_ring.swap(ring);
-    }
-
-    m_samples.resize(9 * nh);
-    m_sj.resize(nh);
-    m_floor.resize(nh);
-    m_value.resize(nh);
-    for(std::size_t h = 0; h < nh; ++h)
-    {
-      asj_detail::all_samples(corners(h), &m_samples[9 * h]);
-      m_sj[h] = asj_detail::exact_minimum(&m_samples[9 * h]);
-      m_floor[h] = element_floor(s.min_sj_floor, m_sj[h]);
-    }
-    std::size_t maxdeg = 0;
-    for(std::size_t v = 0; v < nv; ++v)
-      maxdeg = (std::max)(maxdeg, std::size_t(topo.vertex_corners_end(v) - topo.vertex_corners_begin(v)));
-    m_trial_size = 9 * maxdeg;
-    m_step.assign(nv, 0.1);
+      collect_deviation_rings();
+    else
+      m_ring_off.assign(topo.number_of_vertices() + 1, 0);
+    compute_samples();
+    m_step.assign(topo.number_of_vertices(), 0.1);
 #ifdef CGAL_LINKED_WITH_TBB
     if(s.parallel)
       colour_vertices();
@@ -418,7 +354,7 @@ public:
     {
       // one "colour": every vertex that may move, in index order
       m_colours.resize(1);
-      for(std::size_t v = 0; v < nv; ++v)
+      for(std::size_t v = 0; v < topo.number_of_vertices(); ++v)
         if(m_kind[v] != FIXED) m_colours[0].push_back(v);
     }
   }
@@ -504,6 +440,96 @@ public:
   }
 
 private:
+  // How each vertex may move: interior vertices freely, regular boundary
+  // vertices on the surface, sharp ones along their feature line (with their
+  // two neighbours on it), the others (corners, or every boundary vertex
+  // without a target surface) not at all.
+  void classify_vertices()
+  {
+    const std::size_t nv = m_topo.number_of_vertices();
+    const bool boundary_moves = m_target != nullptr && m_s.move_boundary;
+    m_kind.assign(nv, FREE);
+    for(std::size_t v = 0; v < nv; ++v)
+    {
+      if(!m_topo.is_boundary_vertex(v)) continue;
+      m_kind[v] = FIXED;
+      if(boundary_moves && m_target->vertex_class(v) == Vertex_class::regular) m_kind[v] = ON_SURFACE;
+    }
+    m_line.assign(nv, {nv, nv});
+    if(!boundary_moves) return;
+    for(const Target_surface::Feature_line& l : m_target->feature_lines())
+    {
+      const std::size_t n = l.vertices.size();
+      for(std::size_t j = 0; j < n; ++j)
+      {
+        if(!l.closed && (j == 0 || j + 1 == n)) continue;
+        const std::size_t v = m_target->boundary().vertices[l.vertices[j]];
+        if(m_target->vertex_class(v) != Vertex_class::sharp || !m_topo.is_boundary_vertex(v)) continue;
+        m_line[v] = {m_target->boundary().vertices[l.vertices[(j + n - 1) % n]],
+                     m_target->boundary().vertices[l.vertices[(j + 1) % n]]};
+        m_kind[v] = ON_LINE;
+      }
+    }
+  }
+
+  // the boundary quads around each vertex (m_bq from m_bq_off[v] to m_bq_off[v + 1])
+  void index_boundary_quads()
+  {
+    const std::size_t nv = m_topo.number_of_vertices();
+    const auto& bf = m_topo.boundary_faces();
+    m_bq_off.assign(nv + 1, 0);
+    for(const auto& q : bf) for(std::size_t v : q) ++m_bq_off[v + 1];
+    for(std::size_t v = 0; v < nv; ++v) m_bq_off[v + 1] += m_bq_off[v];
+    m_bq.resize(m_bq_off[nv]);
+    std::vector<std::size_t> fill(m_bq_off.begin(), m_bq_off.end() - 1);
+    for(std::size_t q = 0; q < bf.size(); ++q) for(std::size_t v : bf[q]) m_bq[fill[v]++] = q;
+  }
+
+  // for the built-in deviation test: the boundary quads within two rings of
+  // each moving boundary vertex, its own first
+  void collect_deviation_rings()
+  {
+    const std::size_t nv = m_topo.number_of_vertices();
+    const auto& bf = m_topo.boundary_faces();
+    m_ring_off.assign(nv + 1, 0);
+    std::vector<std::size_t> ring;
+    for(std::size_t v = 0; v < nv; ++v)
+    {
+      if(m_kind[v] == ON_SURFACE || m_kind[v] == ON_LINE)
+      {
+        const std::size_t first = ring.size();
+        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k) ring.push_back(m_bq[k]);
+        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
+          for(std::size_t u : bf[m_bq[k]])
+            for(std::size_t j = m_bq_off[u]; j < m_bq_off[u + 1]; ++j)
+              if(std::find(ring.begin() + first, ring.end(), m_bq[j]) == ring.end()) ring.push_back(m_bq[j]);
+      }
+      m_ring_off[v + 1] = ring.size();
+    }
+    m_ring.swap(ring);
+  }
+
+  // the 9 samples, the scaled Jacobian and the floor of every hex, and the
+  // size of the per-thread trial buffer (9 samples per hex around a vertex)
+  void compute_samples()
+  {
+    const std::size_t nv = m_topo.number_of_vertices(), nh = m_topo.number_of_hexes();
+    m_samples.resize(9 * nh);
+    m_sj.resize(nh);
+    m_floor.resize(nh);
+    m_value.resize(nh);
+    for(std::size_t h = 0; h < nh; ++h)
+    {
+      asj_detail::all_samples(corners(h), &m_samples[9 * h]);
+      m_sj[h] = asj_detail::exact_minimum(&m_samples[9 * h]);
+      m_floor[h] = element_floor(m_s.min_sj_floor, m_sj[h]);
+    }
+    std::size_t maxdeg = 0;
+    for(std::size_t v = 0; v < nv; ++v)
+      maxdeg = (std::max)(maxdeg, std::size_t(m_topo.vertex_corners_end(v) - m_topo.vertex_corners_begin(v)));
+    m_trial_size = 9 * maxdeg;
+  }
+
   std::array<Vec3, 8> corners(std::size_t h) const
   {
     std::array<Vec3, 8> c;

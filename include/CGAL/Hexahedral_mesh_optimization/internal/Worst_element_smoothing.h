@@ -305,6 +305,61 @@ private:
     return 0;
   }
 
+  /// the kinds of move at a vertex, tried in turn until one is accepted:
+  /// along its class (on the surface, along its feature line), on the
+  /// reference whatever its class, or free (only under the surface guard)
+  enum Move { along_class, on_reference, free_move };
+
+  static std::vector<Move> moves_for(Vertex_class cls, bool guarded)
+  {
+    if(cls == Vertex_class::interior) return {free_move};
+    if(!guarded) return {along_class};
+    if(cls == Vertex_class::sharp) return {along_class, on_reference, free_move};
+    return {on_reference, free_move};
+  }
+
+  /// the ascent direction `g` at x0 restricted to the freedom of move `m`
+  Vec3 restricted(std::size_t v, const Vec3& x0, const Vec3& g, Move m, Vertex_class cls) const
+  {
+    if(m == along_class)
+    {
+      const Boundary_constraint bc = m_target->constraint_at(v, x0);
+      return cls == Vertex_class::regular ? g - dot(g, bc.direction) * bc.direction
+                                          : dot(g, bc.direction) * bc.direction;
+    }
+    if(m == on_reference)
+    {
+      Vec3 anchor, normal;
+      m_target->closest_on_reference(x0, anchor, &normal);
+      return g - dot(g, normal) * normal;
+    }
+    return g;
+  }
+
+  /// x brought back to the freedom of move `m`
+  Vec3 constrained(std::size_t v, const Vec3& x, Move m) const
+  {
+    if(m == along_class) return m_target->constraint_at(v, x).anchor;
+    if(m == on_reference)
+    {
+      Vec3 y;
+      m_target->closest_on_reference(x, y);
+      return y;
+    }
+    return x;
+  }
+
+  /// the mean length of the edges at v
+  double mean_edge_length_at(const std::vector<Vec3>& points, std::size_t v) const
+  {
+    double length = 0.;
+    int ne = 0;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+      for(int k = 0; k < 3; ++k, ++ne)
+        length += norm(points[m_topo.hexes()[c->hex][hex_corner_edges[c->local][k]]] - points[v]);
+    return length / (std::max)(ne, 1);
+  }
+
   /// up to `steps` ascent steps on vertex v; returns the number accepted
   std::size_t improve_vertex(std::vector<Vec3>& points, std::size_t v, std::vector<double>& sj, int steps) const
   {
@@ -312,11 +367,7 @@ private:
                                       : (m_topo.is_boundary_vertex(v) ? Vertex_class::corner : Vertex_class::interior);
     const bool guarded = cls != Vertex_class::interior && m_guarded;
     if(cls == Vertex_class::corner && !guarded) return 0;
-    double length = 0.; int ne = 0;
-    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-      for(int k = 0; k < 3; ++k, ++ne)
-        length += norm(points[m_topo.hexes()[c->hex][hex_corner_edges[c->local][k]]] - points[v]);
-    length /= (std::max)(ne, 1);
+    const double length = mean_edge_length_at(points, v);
     if(!(length > 0.)) return 0;
 
     // the hexes around v, for the soft minimum's gradient
@@ -340,44 +391,22 @@ private:
       return m_guard->allows(points, v, x, allowed);
     };
     double f0 = local_minimum(points, v, points[v]);
-    // the kinds of move tried in turn, until one is accepted
-    enum Move { along_class, on_reference, free_move };
-    std::vector<Move> moves;
-    if(cls == Vertex_class::interior) moves = {free_move};
-    else if(!guarded) moves = {along_class};
-    else if(cls == Vertex_class::sharp) moves = {along_class, on_reference, free_move};
-    else moves = {on_reference, free_move};
+    const std::vector<Move> moves = moves_for(cls, guarded);
     for(int step = 0; step < steps; ++step)
     {
       const Vec3 x0 = points[v];
       double hard = 0.;
       soft_minimum_gradient(points, around, single, gradient, hard);
-      const Vec3 g0 = gradient[0];
       bool moved = false;
       for(std::size_t m = 0; m < moves.size() && !moved; ++m)
       {
-        Boundary_constraint bc;
-        Vec3 g = g0;
-        if(moves[m] == along_class)
-        {
-          bc = m_target->constraint_at(v, x0);
-          if(cls == Vertex_class::regular) g = g - dot(g, bc.direction) * bc.direction;
-          else g = dot(g, bc.direction) * bc.direction;
-        }
-        else if(moves[m] == on_reference)
-        {
-          bc.type = Vertex_class::regular;
-          m_target->closest_on_reference(x0, bc.anchor, &bc.direction);
-          g = g - dot(g, bc.direction) * bc.direction;
-        }
+        const Vec3 g = restricted(v, x0, gradient[0], moves[m], cls);
         const double gn = norm(g);
         if(!(gn > 0.)) continue;
         const Vec3 dir = (1. / gn) * g;
         for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
         {
-          Vec3 x = x0 + t * dir;
-          if(moves[m] == along_class) x = m_target->constraint_at(v, x).anchor;
-          else if(moves[m] == on_reference) m_target->closest_on_reference(Vec3(x), x);
+          const Vec3 x = constrained(v, x0 + t * dir, moves[m]);
           const double f = local_minimum(points, v, x);
           // (a rise of the minimum keeps every valid hex valid unless one
           // around v is inverted: then their count may not rise)
