@@ -222,37 +222,22 @@ public:
 
   Pull_back_report run(std::vector<Vec3>& points)
   {
-    typedef std::chrono::steady_clock Clock;
-    const auto start = Clock::now();
+    const Clock::time_point start = Clock::now();
     Pull_back_report rep;
-    const auto& hexes = m_topo.hexes();
-    m_mean_edge = 0.;
-    for(std::size_t e = 0; e < m_topo.number_of_edges(); ++e)
-      m_mean_edge += norm(points[m_topo.edge(e)[0]] - points[m_topo.edge(e)[1]]);
-    m_mean_edge /= double((std::max)(std::size_t(1), m_topo.number_of_edges()));
-    rep.mean_edge_length = m_mean_edge;
-    m_initial = points;
-
-    rep.min_sj_before = global_min_sj(points);
     std::vector<double> dist;
-    rep.distance_before = distances(points, dist);
-    rep.distance_after = rep.distance_before;
-    rep.min_sj_after = rep.min_sj_before;
-    const double tol = m_s.tolerance * m_mean_edge;
-    for(double d : dist) if(d > tol) ++rep.displaced_vertices;
-    m_snap_floor = (std::max)(0., rep.min_sj_before);
-    if(rep.distance_before <= tol || hexes.empty())
+    const double tol = set_up(points, dist, rep);
+    if(rep.distance_before <= tol || m_topo.hexes().empty())
     {
       rep.reached = true;
       try_snap(points, rep);
       rep.min_sj_after = global_min_sj(points);
       rep.distance_after = distances(points, dist);
-      rep.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      rep.seconds = seconds_since(start);
       return rep;
     }
     if(!(rep.min_sj_before > 0.)) // an invalid input: nothing can be guaranteed, leave it
     {
-      rep.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      rep.seconds = seconds_since(start);
       return rep;
     }
 
@@ -261,84 +246,128 @@ public:
     // when a few cannot reach)
     // the SJ floor starts at the input's minimum (never lower it) and is
     // relaxed towards min_sj_fraction × that minimum only when the run stalls
-    auto out_of_time = [&] { return time_limit_reached(m_s.time_limit); };
-    double fraction = (std::max)(1., m_s.min_sj_fraction);
-    m_floor = (std::max)(0., fraction * rep.min_sj_before);
-    std::vector<Vec3> best = points;
-    double best_score = rep.distance_before + m_mean_dist;
-    double w = m_s.initial_weight;
-    int rings = m_s.region_rings;
-    int iteration = 0, growths = 0;
+    Search s;
+    s.fraction = (std::max)(1., m_s.min_sj_fraction);
+    m_floor = (std::max)(0., s.fraction * rep.min_sj_before);
+    s.best = points;
+    s.best_score = rep.distance_before + m_mean_dist;
+    s.w = m_s.initial_weight;
+    s.rings = m_s.region_rings;
     for(;;)
     {
-      build_region(points, dist, tol, rings);
+      build_region(points, dist, tol, s.rings);
       rep.max_free_vertices = (std::max)(rep.max_free_vertices, m_free.size());
       if(m_free.empty()) break;
-      int since_gain = 0, floor_stall = 0;
-      bool floor_stalled = false;
-      double ref_score = best_score;
       double d = rep.distance_before;
-      while(iteration < m_s.max_iterations && !out_of_time())
-      {
-        ++iteration;
-        double step = 0.;
-        const bool moved = iterate(points, w, step);
-        d = distances(points, dist);
-        if(moved && d + m_mean_dist < best_score)
-        {
-          best_score = d + m_mean_dist;
-          best = points;
-        }
-        if(moved && m_s.on_step)
-        {
-          Pull_back_step ps;
-          ps.iteration = iteration; ps.distance = d; ps.min_sj = m_last_min_sj;
-          ps.weight = w; ps.step = step; ps.free_vertices = m_free.size();
-          m_s.on_step(ps);
-        }
-        if(d <= tol) break;
-        // the SJ floor, not the energy, keeps cutting the step: relax it
-        floor_stall = (m_floor_blocked && step < 0.05) ? floor_stall + 1 : 0;
-        if(floor_stall >= 2 && fraction > m_s.min_sj_fraction) { floor_stalled = true; break; }
-        if(!moved || step >= m_s.weight_growth_min_step) w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
-        if(best_score < 0.99 * ref_score) { ref_score = best_score; since_gain = 0; }
-        else if(++since_gain >= m_s.stall_iterations)
-        { // no progress: more weight, or, at the maximal weight, a stall
-          if(w >= m_s.max_weight) break;
-          w = (std::min)(w * m_s.weight_growth, m_s.max_weight);
-          since_gain = 0;
-        }
-      }
-      if(d <= tol || iteration >= m_s.max_iterations || out_of_time()) break;
+      const bool floor_stalled = descend(points, dist, tol, s, d);
+      if(d <= tol || s.iteration >= m_s.max_iterations || out_of_time()) break;
       // stalled: relax the SJ floor if it is what blocks, else grow the region
       // first, then relax the floor
-      const bool can_grow = rings >= 0 && growths < m_s.max_region_growths && m_hexes.size() < hexes.size();
-      if(floor_stalled || (!can_grow && fraction > m_s.min_sj_fraction))
+      const bool can_grow =
+        s.rings >= 0 && s.growths < m_s.max_region_growths && m_hexes.size() < m_topo.hexes().size();
+      if(floor_stalled || (!can_grow && s.fraction > m_s.min_sj_fraction))
       {
-        fraction = (std::max)(m_s.min_sj_fraction, 0.5 * fraction);
-        m_floor = (std::max)(0., fraction * rep.min_sj_before);
+        s.fraction = (std::max)(m_s.min_sj_fraction, 0.5 * s.fraction);
+        m_floor = (std::max)(0., s.fraction * rep.min_sj_before);
         continue; // same region, same weight, from the current state
       }
       if(!can_grow) break;
-      rings = (std::max)(1, 2 * rings);
-      ++growths;
+      s.rings = (std::max)(1, 2 * s.rings);
+      ++s.growths;
       ++rep.region_growths;
-      points = best;
+      points = s.best;
       distances(points, dist);
-      w = (std::max)(m_s.initial_weight, w * 1e-2);
+      s.w = (std::max)(m_s.initial_weight, s.w * 1e-2);
     }
     m_snap_floor = m_floor;
-    points = best;
-    rep.iterations = iteration;
+    points = s.best;
+    rep.iterations = s.iteration;
     try_snap(points, rep);
     rep.distance_after = distances(points, dist);
     rep.reached = rep.distance_after <= tol;
     rep.min_sj_after = global_min_sj(points);
     rep.conjugate_gradient_iterations = m_cg_iterations;
-    rep.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    rep.seconds = seconds_since(start);
     return rep;
   }
 
+private:
+  typedef std::chrono::steady_clock Clock;
+  static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+  bool out_of_time() const { return time_limit_reached(m_s.time_limit); }
+
+  /// the search's state across regions: weight, SJ floor fraction, best
+  /// state and its score, region rings, iterations and region growths
+  struct Search
+  {
+    double w = 0., fraction = 1., best_score = 0.;
+    std::vector<Vec3> best;
+    int rings = 0, iteration = 0, growths = 0;
+  };
+
+  /// the mean edge length, the start positions and the "before" figures of
+  /// `rep`; returns the distance tolerance
+  double set_up(const std::vector<Vec3>& points, std::vector<double>& dist, Pull_back_report& rep)
+  {
+    m_mean_edge = 0.;
+    for(std::size_t e = 0; e < m_topo.number_of_edges(); ++e)
+      m_mean_edge += norm(points[m_topo.edge(e)[0]] - points[m_topo.edge(e)[1]]);
+    m_mean_edge /= double((std::max)(std::size_t(1), m_topo.number_of_edges()));
+    rep.mean_edge_length = m_mean_edge;
+    m_initial = points;
+    rep.min_sj_before = global_min_sj(points);
+    rep.distance_before = distances(points, dist);
+    rep.distance_after = rep.distance_before;
+    rep.min_sj_after = rep.min_sj_before;
+    const double tol = m_s.tolerance * m_mean_edge;
+    for(double d : dist) if(d > tol) ++rep.displaced_vertices;
+    m_snap_floor = (std::max)(0., rep.min_sj_before);
+    return tol;
+  }
+
+  /// SLIM iterations in the current region until the target is reached, the
+  /// iterations run out, the weight stalls at its maximum, or the SJ floor
+  /// keeps cutting the step (returns true: relax it); `d` is the distance
+  /// reached
+  bool descend(std::vector<Vec3>& points, std::vector<double>& dist, double tol, Search& s, double& d)
+  {
+    int since_gain = 0, floor_stall = 0;
+    double ref_score = s.best_score;
+    while(s.iteration < m_s.max_iterations && !out_of_time())
+    {
+      ++s.iteration;
+      double step = 0.;
+      const bool moved = iterate(points, s.w, step);
+      d = distances(points, dist);
+      if(moved && d + m_mean_dist < s.best_score)
+      {
+        s.best_score = d + m_mean_dist;
+        s.best = points;
+      }
+      if(moved && m_s.on_step)
+      {
+        Pull_back_step ps;
+        ps.iteration = s.iteration; ps.distance = d; ps.min_sj = m_last_min_sj;
+        ps.weight = s.w; ps.step = step; ps.free_vertices = m_free.size();
+        m_s.on_step(ps);
+      }
+      if(d <= tol) return false;
+      // the SJ floor, not the energy, keeps cutting the step: relax it
+      floor_stall = (m_floor_blocked && step < 0.05) ? floor_stall + 1 : 0;
+      if(floor_stall >= 2 && s.fraction > m_s.min_sj_fraction) return true;
+      if(!moved || step >= m_s.weight_growth_min_step) s.w = (std::min)(s.w * m_s.weight_growth, m_s.max_weight);
+      if(s.best_score < 0.99 * ref_score) { ref_score = s.best_score; since_gain = 0; }
+      else if(++since_gain >= m_s.stall_iterations)
+      { // no progress: more weight, or, at the maximal weight, a stall
+        if(s.w >= m_s.max_weight) return false;
+        s.w = (std::min)(s.w * m_s.weight_growth, m_s.max_weight);
+        since_gain = 0;
+      }
+    }
+    return false;
+  }
+
+public:
   double global_min_sj(const std::vector<Vec3>& points) const
   {
     double m = std::numeric_limits<double>::max();
