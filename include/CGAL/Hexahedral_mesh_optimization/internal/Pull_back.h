@@ -568,14 +568,87 @@ private:
   bool iterate(std::vector<Vec3>& points, double w, double& step)
   {
     m_floor_blocked = false;
-    const auto& hexes = m_topo.hexes();
     m_w = w;
+    Eigen::VectorXd rhs;
+    assemble(points, w, rhs);
+    Eigen::VectorXd xs;
+    if(!solve(points, rhs, xs)) return false;
+    std::vector<Vec3> dir(points.size(), Vec3{0., 0., 0.});
+    for(std::size_t l = 0; l < m_free.size(); ++l)
+    {
+      const Vec3& x = points[m_free[l]];
+      dir[m_free[l]] = Vec3{xs[3 * l] - x[0], xs[3 * l + 1] - x[1], xs[3 * l + 2] - x[2]};
+    }
+    return line_search(points, dir, step);
+  }
+
+  /// SLIM's weights of a frame F (reference frame already applied): WᵀW and
+  /// WᵀW R, from the eigen-decomposition FᵀF = V Σ² Vᵀ (closed form, no SVD):
+  /// with U Σ = F V, WᵀW = U diag(w²) Uᵀ = F V diag(w²/σ²) Vᵀ Fᵀ and
+  /// WᵀW R = U diag(w²) Vᵀ = F V diag(w²/σ) Vᵀ, R = U Vᵀ the closest rotation
+  /// (a nearly degenerate F, whose small σ the closed form loses, goes
+  /// through a Jacobi SVD instead)
+  struct Slim_weights
+  {
+    M3 ww;  ///< WᵀW
+    M3 wwr; ///< WᵀW R
+  };
+
+  // (GCC 12 warns, wrongly, that Eigen's JacobiSVD of a 3×3 matrix may read
+  // uninitialised singular values once inlined here)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+  Slim_weights slim_weights(const M3& f) const
+  {
+    Eigen::SelfAdjointEigenSolver<M3> es;
+    es.computeDirect(f.transpose() * f);
+    M3 vv = es.eigenvectors();
+    V3 sig;
+    if(es.eigenvalues()[0] > 1e-6 * es.eigenvalues()[2])
+      for(int k = 0; k < 3; ++k) sig[k] = std::sqrt(es.eigenvalues()[k]);
+    else
+    {
+      Eigen::JacobiSVD<M3> svd(f, Eigen::ComputeFullV);
+      vv = svd.matrixV();
+      sig = svd.singularValues();
+    }
+    double scale = 1.;
+    if(m_s.energy == Pull_back_energy::exp_symmetric_dirichlet)
+    {
+      const double sd = f.squaredNorm() + f.inverse().squaredNorm();
+      scale = m_s.exp_factor * std::exp(m_s.exp_factor * (sd - 6.));
+    }
+    V3 a, b;
+    for(int k = 0; k < 3; ++k)
+    {
+      const double x = (std::max)(sig[k], 1e-12);
+      const double w2 = (std::min)(m_s.max_slim_weight, scale * (x + 1.) * (x * x + 1.) / (x * x * x));
+      a[k] = w2 / (x * x);
+      b[k] = w2 / x;
+    }
+    const M3 fv = f * vv;
+    const M3 ww = fv * a.asDiagonal() * fv.transpose();
+    const M3 wwr = fv * b.asDiagonal() * vv.transpose();
+    return {ww, wwr};
+  }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+  /// the local step's system: the SLIM quadratic of every sample of the
+  /// region's hexes (into m_H's values and `rhs`; fixed vertices to the
+  /// right-hand side), plus the boundary constraints with weight w
+  void assemble(const std::vector<Vec3>& points, double w, Eigen::VectorXd& rhs)
+  {
     // m_bc holds the anchors of the current positions (distances() was called last)
+    const auto& hexes = m_topo.hexes();
     const std::size_t m = m_free.size();
     double* val = m_H.valuePtr();
     std::fill(val, val + m_H.nonZeros(), 0.);
     const int* outer = m_H.outerIndexPtr();
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(Eigen::Index(3 * m));
+    rhs = Eigen::VectorXd::Zero(Eigen::Index(3 * m));
     const Sample_table& t = table();
     for(std::size_t i = 0; i < m_hexes.size(); ++i)
     {
@@ -584,40 +657,9 @@ private:
       for(int s = 0; s < 9; ++s)
       {
         const M3 f = frame(p, s) * m_rinv[i][s];
-        // SLIM weights from the eigen-decomposition FᵀF = V Σ² Vᵀ (closed
-        // form, no SVD): with U Σ = F V, WᵀW = U diag(w²) Uᵀ = F V diag(w²/σ²) Vᵀ Fᵀ
-        // and WᵀW R = U diag(w²) Vᵀ = F V diag(w²/σ) Vᵀ, R = U Vᵀ the closest rotation
-        // (a nearly degenerate F, whose small σ the closed form loses, goes
-        // through a Jacobi SVD instead)
-        Eigen::SelfAdjointEigenSolver<M3> es;
-        es.computeDirect(f.transpose() * f);
-        M3 vv = es.eigenvectors();
-        V3 sig;
-        if(es.eigenvalues()[0] > 1e-6 * es.eigenvalues()[2])
-          for(int k = 0; k < 3; ++k) sig[k] = std::sqrt(es.eigenvalues()[k]);
-        else
-        {
-          Eigen::JacobiSVD<M3> svd(f, Eigen::ComputeFullV);
-          vv = svd.matrixV();
-          sig = svd.singularValues();
-        }
-        double scale = 1.;
-        if(m_s.energy == Pull_back_energy::exp_symmetric_dirichlet)
-        {
-          const double sd = f.squaredNorm() + f.inverse().squaredNorm();
-          scale = m_s.exp_factor * std::exp(m_s.exp_factor * (sd - 6.));
-        }
-        V3 a, b;
-        for(int k = 0; k < 3; ++k)
-        {
-          const double x = (std::max)(sig[k], 1e-12);
-          const double w2 = (std::min)(m_s.max_slim_weight, scale * (x + 1.) * (x * x + 1.) / (x * x * x));
-          a[k] = w2 / (x * x);
-          b[k] = w2 / x;
-        }
-        const M3 fv = f * vv;
-        const M3 ww = fv * a.asDiagonal() * fv.transpose(); // WᵀW
-        const M3 wwr = fv * b.asDiagonal() * vv.transpose(); // WᵀW R
+        const Slim_weights sw = slim_weights(f);
+        const M3& ww = sw.ww;
+        const M3& wwr = sw.wwr;
         // D = G R⁻¹ (8×3)
         Eigen::Matrix<double, 8, 3> g;
         for(int a = 0; a < 8; ++a) for(int k = 0; k < 3; ++k) g(a, k) = t.g[s][a][k];
@@ -664,7 +706,12 @@ private:
       }
       rhs.segment<3>(3 * l) += mm * V3(c.anchor[0], c.anchor[1], c.anchor[2]);
     }
-    Eigen::VectorXd xs;
+  }
+
+  /// solves m_H xs = rhs (sparse LDLᵀ, or conjugate gradients from the
+  /// current positions); false when it fails or gives a non-finite value
+  bool solve(const std::vector<Vec3>& points, const Eigen::VectorXd& rhs, Eigen::VectorXd& xs)
+  {
     if(m_s.linear_solver == Pull_back_linear_solver::simplicial_ldlt)
     {
       m_solver.factorize(m_H);
@@ -674,6 +721,7 @@ private:
     }
     else
     {
+      const std::size_t m = m_free.size();
       Eigen::VectorXd x0(Eigen::Index(3 * m));
       for(std::size_t l = 0; l < m; ++l)
         for(int d = 0; d < 3; ++d) x0[Eigen::Index(3 * l + d)] = points[m_free[l]][d];
@@ -683,14 +731,15 @@ private:
       xs = m_cg.solveWithGuess(rhs, x0);
       m_cg_iterations += long(m_cg.iterations());
     }
-    if(!xs.allFinite()) return false;
-    std::vector<Vec3> dir(points.size(), Vec3{0., 0., 0.});
-    for(std::size_t l = 0; l < m; ++l)
-    {
-      const Vec3& x = points[m_free[l]];
-      dir[m_free[l]] = Vec3{xs[3 * l] - x[0], xs[3 * l + 1] - x[1], xs[3 * l + 2] - x[2]};
-    }
-    // flip-avoiding maximal step
+    return xs.allFinite();
+  }
+
+  /// the flip-avoiding step along `dir` (at most 0.8 of the first
+  /// inversion, then halved) that lowers the energy and keeps every hex of
+  /// the region above the SJ floor; sets `step` and returns true if found
+  bool line_search(std::vector<Vec3>& points, const std::vector<Vec3>& dir, double& step)
+  {
+    const auto& hexes = m_topo.hexes();
     double amax = 1.25;
     for(std::size_t i = 0; i < m_hexes.size(); ++i)
     {
@@ -716,6 +765,7 @@ private:
     }
     return false;
   }
+
 
   int diagonal_rank(std::size_t l) const
   {
