@@ -135,24 +135,17 @@ inline void build_csr(std::size_t n,
     list[fill[p.first]++] = p.second;
 }
 
-} // namespace boundary_detail
-
-/// Extracts the boundary of the hex mesh given by `hexes` over `number_of_vertices` vertices.
-inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
-                                          std::size_t number_of_vertices)
+/// the faces of `hexes` that occur once, as quads with their hex and local face
+inline void collect_boundary_quads(const std::vector<Hex>& hexes, std::size_t number_of_vertices,
+                                   Hex_mesh_boundary& b)
 {
   typedef Hex_mesh_boundary::Quad Quad;
-  const std::size_t npos = Hex_mesh_boundary::npos;
-  Hex_mesh_boundary b;
-
-  // ---- faces occurring once (face_groups.h)
   std::vector<std::size_t> boundary_face_ids;
   for_each_face_group(hexes, number_of_vertices, [&](const Quad&, const std::size_t* ids, std::size_t count) {
     if(count == 1) boundary_face_ids.push_back(ids[0]);
     else if(count > 2) ++b.number_of_overshared_faces;
   });
   std::sort(boundary_face_ids.begin(), boundary_face_ids.end());
-
   const std::size_t nq = boundary_face_ids.size();
   b.quads.resize(nq);
   b.quad_hex.resize(nq);
@@ -166,10 +159,14 @@ inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
     b.quad_hex[q] = h;
     b.quad_local_face[q] = std::uint8_t(f);
   }
+}
 
-  // ---- boundary vertices
+/// the boundary vertices, in index order, and their boundary indices
+inline void number_boundary_vertices(std::size_t number_of_vertices, Hex_mesh_boundary& b)
+{
+  const std::size_t npos = Hex_mesh_boundary::npos;
   b.boundary_index.assign(number_of_vertices, npos);
-  for(const Quad& q : b.quads)
+  for(const Hex_mesh_boundary::Quad& q : b.quads)
     for(std::size_t v : q)
       b.boundary_index[v] = 0;
   for(std::size_t v = 0; v < number_of_vertices; ++v)
@@ -178,8 +175,14 @@ inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
       b.boundary_index[v] = b.vertices.size();
       b.vertices.push_back(v);
     }
+}
 
-  // ---- edges: sort the 4·nq half-edges by their undirected key
+/// the edges (the 4·nq half-edges sorted by their undirected key), whether
+/// each is manifold, the edges and the neighbours of each quad
+inline void build_boundary_edges(Hex_mesh_boundary& b)
+{
+  typedef Hex_mesh_boundary::Quad Quad;
+  const std::size_t npos = Hex_mesh_boundary::npos, nq = b.quads.size();
   struct Half_edge
   {
     std::array<std::size_t, 2> key;
@@ -217,21 +220,37 @@ inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
     }
     i = j;
   }
+}
 
-  // ---- vertex -> quads, vertex -> edges
+/// vertex -> quads and vertex -> edges
+inline void build_boundary_incidences(Hex_mesh_boundary& b)
+{
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  pairs.reserve(4 * nq);
-  for(std::size_t q = 0; q < nq; ++q)
+  pairs.reserve(4 * b.quads.size());
+  for(std::size_t q = 0; q < b.quads.size(); ++q)
     for(int i = 0; i < 4; ++i)
       pairs.emplace_back(b.boundary_index[b.quads[q][i]], q);
-  boundary_detail::build_csr(b.vertices.size(), pairs, b.vertex_quad_offsets, b.vertex_quad_list);
+  build_csr(b.vertices.size(), pairs, b.vertex_quad_offsets, b.vertex_quad_list);
   pairs.clear();
   for(std::size_t e = 0; e < b.edges.size(); ++e)
   {
     pairs.emplace_back(b.boundary_index[b.edges[e][0]], e);
     pairs.emplace_back(b.boundary_index[b.edges[e][1]], e);
   }
-  boundary_detail::build_csr(b.vertices.size(), pairs, b.vertex_edge_offsets, b.vertex_edge_list);
+  build_csr(b.vertices.size(), pairs, b.vertex_edge_offsets, b.vertex_edge_list);
+}
+
+} // namespace boundary_detail
+
+/// Extracts the boundary of the hex mesh given by `hexes` over `number_of_vertices` vertices.
+inline Hex_mesh_boundary extract_boundary(const std::vector<Hex>& hexes,
+                                          std::size_t number_of_vertices)
+{
+  Hex_mesh_boundary b;
+  boundary_detail::collect_boundary_quads(hexes, number_of_vertices, b); // faces occurring once (face_groups.h)
+  boundary_detail::number_boundary_vertices(number_of_vertices, b);
+  boundary_detail::build_boundary_edges(b);
+  boundary_detail::build_boundary_incidences(b);
   return b;
 }
 
