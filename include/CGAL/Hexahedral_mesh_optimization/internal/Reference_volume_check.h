@@ -507,19 +507,10 @@ inline void surface_to_soup(const Triangle_surface& s, std::vector<Vec3>& points
   }
 }
 
-/// The check itself, on flat arrays and a triangle surface.
-inline Reference_volume_report check_reference_volume(const Hex_mesh_arrays& mesh,
-                                                      const Triangle_surface& reference,
-                                                      double volume_tolerance,
-                                                      double outside_tolerance)
+/// the hex mesh alone: volume, hexes of non-positive volume, and its boundary
+/// (triangles, self-intersections, degenerate triangles)
+inline void measure_hex_mesh(const Hex_mesh_arrays& mesh, Reference_volume_report& r)
 {
-  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-  const auto start = std::chrono::steady_clock::now();
-  Reference_volume_report r;
-  r.volume_tolerance = volume_tolerance;
-  r.outside_tolerance = outside_tolerance;
-
-  // ---- the hex mesh alone
   r.hexahedra = mesh.number_of_hexes();
   r.vertices = mesh.number_of_vertices();
   for(std::size_t h = 0; h < mesh.number_of_hexes(); ++h)
@@ -529,37 +520,34 @@ inline Reference_volume_report check_reference_volume(const Hex_mesh_arrays& mes
     if(!(v > 0.))
       ++r.nonpositive_volume_hexahedra;
   }
-  {
-    Triangle_surface boundary;
-    boundary_surface(mesh, boundary);
-    r.boundary_triangles = boundary.number_of_faces();
-    count_self_intersections(boundary, r.boundary_self_intersections, r.degenerate_boundary_triangles);
-  }
+  Triangle_surface boundary;
+  boundary_surface(mesh, boundary);
+  r.boundary_triangles = boundary.number_of_faces();
+  count_self_intersections(boundary, r.boundary_self_intersections, r.degenerate_boundary_triangles);
+}
 
-  auto finish = [&]() {
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return r;
-  };
-
-  // ---- the reference
+/// whether the reference bounds a volume (triangles, closed, no
+/// self-intersection); otherwise `r.error` says why
+inline bool reference_bounds_a_volume(const Triangle_surface& reference, Reference_volume_report& r)
+{
   r.reference_triangles = reference.number_of_faces();
   r.reference_diagonal = diagonal(bbox_of(reference));
   if(r.reference_triangles == 0)
   {
     r.error = "the reference surface has no triangle";
-    return finish();
+    return false;
   }
   if(!CGAL::is_triangle_mesh(reference))
   {
     r.error = "the reference surface is not a triangle mesh";
-    return finish();
+    return false;
   }
   r.reference_border_edges = number_of_border_edges(reference);
   if(r.reference_border_edges > 0)
   {
     r.error = "the reference surface is not closed (" + std::to_string(r.reference_border_edges) +
               " border edges): it bounds no volume";
-    return finish();
+    return false;
   }
   std::size_t degenerate = 0;
   count_self_intersections(reference, r.reference_self_intersections, degenerate);
@@ -568,26 +556,17 @@ inline Reference_volume_report check_reference_volume(const Hex_mesh_arrays& mes
   {
     r.error = "the reference surface self-intersects (" + std::to_string(r.reference_self_intersections) +
               " pairs of intersecting or degenerate triangles)";
-    return finish();
+    return false;
   }
+  return true;
+}
 
-  std::vector<Vec3> soup_points;
-  std::vector<Tri> soup_triangles;
-  surface_to_soup(reference, soup_points, soup_triangles);
-  r.reference_surface_volume = std::abs(closed_surface_volume(soup_points, soup_triangles));
-  const Surface_tetrahedralization tets = tetrahedralize_closed_surface(soup_points, soup_triangles);
-  r.tetgen_seconds = tets.seconds;
-  if(!tets.ok)
-  {
-    r.error = tets.error;
-    return finish();
-  }
-  r.reference_tetrahedra = tets.number_of_tetrahedra;
-  r.reference_volume = tets.volume;
-  if(r.reference_volume > 0.)
-    r.relative_volume_difference = std::abs(r.hex_mesh_volume - r.reference_volume) / r.reference_volume;
-
-  // ---- vertices outside the reference volume
+/// the mesh vertices outside the reference volume, how many beyond
+/// `outside_tolerance` × its diagonal, and the farthest
+inline void count_vertices_outside(const Hex_mesh_arrays& mesh, const Triangle_surface& reference,
+                                   double outside_tolerance, Reference_volume_report& r)
+{
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
   typedef CGAL::Side_of_triangle_mesh<Triangle_surface, K> Side;
   typename Side::AABB_tree tree(faces(reference).first, faces(reference).second, reference);
   tree.accelerate_distance_queries();
@@ -609,6 +588,44 @@ inline Reference_volume_report check_reference_volume(const Hex_mesh_arrays& mes
     }
   }
   r.outside_checked = true;
+}
+
+/// The check itself, on flat arrays and a triangle surface.
+inline Reference_volume_report check_reference_volume(const Hex_mesh_arrays& mesh,
+                                                      const Triangle_surface& reference,
+                                                      double volume_tolerance,
+                                                      double outside_tolerance)
+{
+  const auto start = std::chrono::steady_clock::now();
+  Reference_volume_report r;
+  r.volume_tolerance = volume_tolerance;
+  r.outside_tolerance = outside_tolerance;
+  auto finish = [&]() {
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  };
+  measure_hex_mesh(mesh, r);
+  if(!reference_bounds_a_volume(reference, r))
+    return finish();
+
+  // the reference volume by TetGen
+  std::vector<Vec3> soup_points;
+  std::vector<Tri> soup_triangles;
+  surface_to_soup(reference, soup_points, soup_triangles);
+  r.reference_surface_volume = std::abs(closed_surface_volume(soup_points, soup_triangles));
+  const Surface_tetrahedralization tets = tetrahedralize_closed_surface(soup_points, soup_triangles);
+  r.tetgen_seconds = tets.seconds;
+  if(!tets.ok)
+  {
+    r.error = tets.error;
+    return finish();
+  }
+  r.reference_tetrahedra = tets.number_of_tetrahedra;
+  r.reference_volume = tets.volume;
+  if(r.reference_volume > 0.)
+    r.relative_volume_difference = std::abs(r.hex_mesh_volume - r.reference_volume) / r.reference_volume;
+
+  count_vertices_outside(mesh, reference, outside_tolerance, r);
   return finish();
 }
 
