@@ -438,7 +438,19 @@ private:
   }
 
   // ---------------------------------------------------------------- region
+  /// the region: the hexes within `rings` of the boundary vertices farther
+  /// than `tol` from the target (all when rings < 0), its free vertices
+  /// (all their hexes in it), their rest frames and the sparse pattern
   void build_region(const std::vector<Vec3>& points, const std::vector<double>& dist, double tol, int rings)
+  {
+    select_region(points, dist, tol, rings);
+    compute_rest_frames();
+    build_sparse_pattern();
+    if(m_s.linear_solver == Pull_back_linear_solver::simplicial_ldlt)
+      m_solver.analyzePattern(m_H);
+  }
+
+  void select_region(const std::vector<Vec3>& points, const std::vector<double>& dist, double tol, int rings)
   {
     const std::size_t nv = points.size(), nh = m_topo.number_of_hexes();
     const auto& hexes = m_topo.hexes();
@@ -472,7 +484,12 @@ private:
       for(std::size_t v : hexes[h]) any = any || m_local[v] >= 0;
       if(any) m_hexes.push_back(h);
     }
-    // rest frames (inverse), from the positions at the start of the pull-back
+  }
+
+  /// rest frames (inverse), from the positions at the start of the pull-back
+  void compute_rest_frames()
+  {
+    const auto& hexes = m_topo.hexes();
     m_rinv.resize(m_hexes.size());
     for(std::size_t i = 0; i < m_hexes.size(); ++i)
     {
@@ -487,7 +504,13 @@ private:
       else
         for(int s = 0; s < 9; ++s) m_rinv[i][s] = frame(p, s).inverse();
     }
-    // sparse pattern: 3×3 blocks between free vertices sharing a hex
+  }
+
+  /// sparse pattern: 3×3 blocks between free vertices sharing a hex, and
+  /// where each hex's vertex pairs go in it (m_block)
+  void build_sparse_pattern()
+  {
+    const auto& hexes = m_topo.hexes();
     const std::size_t m = m_free.size();
     std::vector<std::vector<int> > nb(m);
     for(std::size_t h : m_hexes)
@@ -524,8 +547,6 @@ private:
           m_block[i][8 * a + b] = int(std::lower_bound(l.begin(), l.end(), la) - l.begin());
         }
     }
-    if(m_s.linear_solver == Pull_back_linear_solver::simplicial_ldlt)
-      m_solver.analyzePattern(m_H);
   }
 
   // ---------------------------------------------------------------- energy
