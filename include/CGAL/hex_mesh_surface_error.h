@@ -242,20 +242,111 @@ namespace IO {
 /*!
 \ingroup PkgHexahedralMeshOptimizationRef
 
+\brief builds a reference surface `mesh` from a polygon soup, with the
+checks and repairs of `read_reference_surface()`.
+
+The soup is checked first: every face has at least 3 vertices, every vertex
+index is in range and every coordinate is finite (otherwise the error names
+the face or vertex). Faces are then cut into triangles: a quadrilateral along
+its shorter diagonal, a larger face into a fan from its first vertex. A soup
+that is not a clean 2-manifold (an STL triangle soup, duplicated or
+non-manifold vertices, a vertex repeated in a face, inconsistent
+orientations) is repaired and oriented
+(`Polygon_mesh_processing::repair_polygon_soup()` and
+`orient_polygon_soup()`) before the mesh is built.
+
+\tparam PolygonMesh a model of `MutableFaceGraph` with an internal point
+        property map, for example `CGAL::Surface_mesh<Point_3>`
+\tparam Point the point type of `mesh`
+
+\param points the vertices of the soup (modified by the repairs)
+\param polygons the faces, indices into `points` numbered from 0 (modified:
+       triangulated and repaired)
+\param mesh the output mesh, cleared first
+\param source what the soup is called in messages, e.g. "reference surface 'ref.obj'"
+\param error if not null, receives a message when the soup fails the checks
+
+\returns `false`, with a message, when the soup fails the checks or holds no face
+*/
+template <class PolygonMesh, class Point>
+bool polygon_soup_to_reference_surface(std::vector<Point>& points, std::vector<std::vector<std::size_t> >& polygons,
+                                       PolygonMesh& mesh, const std::string& source, std::string* error = nullptr)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  auto fail = [&](const std::string& msg) {
+    if(error != nullptr)
+      *error = msg;
+    CGAL::clear(mesh);
+    return false;
+  };
+  CGAL::clear(mesh);
+  if(polygons.empty())
+    return fail(source + " has no face");
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(!std::isfinite(CGAL::to_double(points[v].x())) || !std::isfinite(CGAL::to_double(points[v].y())) ||
+       !std::isfinite(CGAL::to_double(points[v].z())))
+      return fail(source + ": vertex " + std::to_string(v) + " has a coordinate that is not a finite number");
+  for(std::size_t f = 0; f < polygons.size(); ++f)
+  {
+    if(polygons[f].size() < 3)
+      return fail(source + ": face " + std::to_string(f) + " has " + std::to_string(polygons[f].size()) +
+                  " vertices (at least 3 needed)");
+    for(std::size_t v : polygons[f])
+      if(v >= points.size())
+        return fail(source + ": face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
+                    ", out of range (the surface has " + std::to_string(points.size()) +
+                    " vertices, numbered from 0 here)");
+  }
+  // triangles: a quad is cut along its shorter diagonal, a larger face into
+  // a fan from its first vertex (CGAL's triangulate_faces, a constrained
+  // triangulation, bound a reference to null on a degenerate face: found
+  // by fuzzing, test/Hexahedral_mesh_optimization/fuzz/regressions)
+  {
+    std::vector<std::vector<std::size_t> > triangles;
+    triangles.reserve(polygons.size());
+    for(const std::vector<std::size_t>& f : polygons)
+    {
+      if(f.size() == 4 && CGAL::squared_distance(points[f[1]], points[f[3]]) <
+                            CGAL::squared_distance(points[f[0]], points[f[2]]))
+      {
+        triangles.push_back({f[0], f[1], f[3]});
+        triangles.push_back({f[1], f[2], f[3]});
+        continue;
+      }
+      for(std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
+    }
+    polygons.swap(triangles);
+  }
+  // a clean 2-manifold is built as is; anything else (STL triangle soups,
+  // duplicated or non-manifold vertices, repeated vertices in a face,
+  // inconsistent orientation) is repaired and oriented first
+  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+  {
+    PMP::repair_polygon_soup(points, polygons, parameters::verbose(false));
+    PMP::orient_polygon_soup(points, polygons);
+    if(polygons.empty())
+      return fail(source + " has no face left once degenerate faces are removed");
+    if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+      return fail("the faces of " + source + " do not form an orientable surface");
+  }
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if(faces(mesh).empty())
+    return fail(source + " has no face");
+  return true;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
+
 \brief reads a reference surface (any format `CGAL::IO::read_polygon_soup()`
 reads: OBJ, OFF, STL, PLY, ...) into `mesh` and triangulates its faces when
 needed.
 
-The file is read as a polygon soup and checked first: every face has at
-least 3 vertices, every vertex index is in range and every coordinate is
-finite (otherwise the error names the face or vertex). A soup that is not a
-clean 2-manifold (an STL triangle soup, duplicated or non-manifold vertices,
-a vertex repeated in a face, inconsistent orientations) is repaired and
-oriented (`Polygon_mesh_processing::repair_polygon_soup()` and
-`orient_polygon_soup()`) before the mesh is built. Faces are cut into
-triangles first: a quadrilateral along its shorter diagonal, a larger face
-into a fan from its first vertex. ASCII OFF files are read by the package's
-own reader, which names the line of a bad token.
+The file is read as a polygon soup, then checked, triangulated and, when it
+is not a clean 2-manifold, repaired and oriented by
+`polygon_soup_to_reference_surface()`; the errors name the file and the face
+or vertex. ASCII OFF files are read by the package's own reader, which names
+the line of a bad token.
 
 \tparam PolygonMesh a model of `MutableFaceGraph` with an internal point
         property map, for example `CGAL::Surface_mesh<Point_3>`
@@ -270,7 +361,6 @@ own reader, which names the line of a bad token.
 template <class PolygonMesh>
 bool read_reference_surface(const std::string& fname, PolygonMesh& mesh, std::string* error = nullptr)
 {
-  namespace PMP = CGAL::Polygon_mesh_processing;
   typedef typename boost::property_map<PolygonMesh, vertex_point_t>::type Vertex_point_map;
   typedef typename boost::property_traits<Vertex_point_map>::value_type Point;
   auto fail = [&](const std::string& msg) {
@@ -300,60 +390,7 @@ bool read_reference_surface(const std::string& fname, PolygonMesh& mesh, std::st
   else if(!CGAL::IO::read_polygon_soup(fname, points, polygons, parameters::verbose(false)))
     return fail("cannot read a surface from '" + fname +
                 "': unsupported extension (use OBJ, OFF, STL or PLY) or malformed file");
-  if(polygons.empty())
-    return fail("reference surface '" + fname + "' has no face");
-  for(std::size_t v = 0; v < points.size(); ++v)
-    if(!std::isfinite(CGAL::to_double(points[v].x())) || !std::isfinite(CGAL::to_double(points[v].y())) ||
-       !std::isfinite(CGAL::to_double(points[v].z())))
-      return fail("reference surface '" + fname + "': vertex " + std::to_string(v) +
-                  " has a coordinate that is not a finite number");
-  for(std::size_t f = 0; f < polygons.size(); ++f)
-  {
-    if(polygons[f].size() < 3)
-      return fail("reference surface '" + fname + "': face " + std::to_string(f) + " has " +
-                  std::to_string(polygons[f].size()) + " vertices (at least 3 needed)");
-    for(std::size_t v : polygons[f])
-      if(v >= points.size())
-        return fail("reference surface '" + fname + "': face " + std::to_string(f) + " uses vertex " +
-                    std::to_string(v) + ", out of range (the file has " + std::to_string(points.size()) +
-                    " vertices, numbered from 0 here)");
-  }
-  // triangles: a quad is cut along its shorter diagonal, a larger face into
-  // a fan from its first vertex (CGAL's triangulate_faces, a constrained
-  // triangulation, bound a reference to null on a degenerate face: found
-  // by fuzzing, as above)
-  {
-    std::vector<std::vector<std::size_t> > triangles;
-    triangles.reserve(polygons.size());
-    for(const std::vector<std::size_t>& f : polygons)
-    {
-      if(f.size() == 4 && CGAL::squared_distance(points[f[1]], points[f[3]]) <
-                            CGAL::squared_distance(points[f[0]], points[f[2]]))
-      {
-        triangles.push_back({f[0], f[1], f[3]});
-        triangles.push_back({f[1], f[2], f[3]});
-        continue;
-      }
-      for(std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
-    }
-    polygons.swap(triangles);
-  }
-  // a clean 2-manifold is built as is; anything else (STL triangle soups,
-  // duplicated or non-manifold vertices, repeated vertices in a face,
-  // inconsistent orientation) is repaired and oriented first
-  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-  {
-    PMP::repair_polygon_soup(points, polygons, parameters::verbose(false));
-    PMP::orient_polygon_soup(points, polygons);
-    if(polygons.empty())
-      return fail("reference surface '" + fname + "' has no face left once degenerate faces are removed");
-    if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-      return fail("the faces of reference surface '" + fname + "' do not form an orientable surface");
-  }
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  if(faces(mesh).empty())
-    return fail("reference surface '" + fname + "' has no face");
-  return true;
+  return polygon_soup_to_reference_surface(points, polygons, mesh, "reference surface '" + fname + "'", error);
 }
 
 } // namespace IO
