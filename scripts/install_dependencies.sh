@@ -8,9 +8,11 @@ export DEBIAN_FRONTEND=noninteractive
 packages=(cmake make g++ libcgal-dev libeigen3-dev libboost-dev libtet1.5-dev libtbb-dev)
 # --tests: also what the whole test suite needs (clang and its runtime for
 # the fuzz targets of the readers; pybind11, Python headers, numpy, pytest and
-# meshio for the Python bindings and their tests)
+# meshio for the Python bindings and their tests; doxygen, VTK and Xvfb for
+# the manual and its rendered figures)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(clang libclang-rt-14-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-meshio)
+  packages+=(clang libclang-rt-14-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-meshio
+             doxygen python3-vtk9 xvfb xauth)
 fi
 
 missing=()

@@ -40,8 +40,10 @@ struct Reference_volume_report
 
   /// \name Reference surface
   /// @{
+
   /// why the reference could not be checked, empty otherwise
   std::string error;
+  /// triangles of the reference surface
   std::size_t reference_triangles = 0;
   /// edges of the reference with a single incident triangle (0 for a closed surface)
   std::size_t reference_border_edges = 0;
@@ -60,7 +62,10 @@ struct Reference_volume_report
 
   /// \name Hexahedral mesh
   /// @{
+
+  /// hexahedra of the mesh
   std::size_t hexahedra = 0;
+  /// vertices of the mesh
   std::size_t vertices = 0;
   /// sum of the signed volumes of the trilinear hexahedra (an inverted part counts negatively)
   double hex_mesh_volume = 0.;
@@ -72,6 +77,8 @@ struct Reference_volume_report
 
   /// \name Boundary of the hexahedral mesh (each quadrilateral cut along its diagonal (q0, q2))
   /// @{
+
+  /// triangles of the boundary (two per boundary quadrilateral)
   std::size_t boundary_triangles = 0;
   /// pairs of boundary triangles that intersect other than along their common edge or vertex
   std::size_t boundary_self_intersections = 0;
@@ -81,6 +88,7 @@ struct Reference_volume_report
 
   /// \name Vertices outside the reference volume
   /// @{
+
   /// whether the point location ran (`false` when the reference has an error)
   bool outside_checked = false;
   /// vertices strictly outside the reference volume, however close to the surface
@@ -95,10 +103,14 @@ struct Reference_volume_report
 
   /// \name Thresholds used by `passed()` and timing
   /// @{
+
+  /// largest `relative_volume_difference` that `passed()` accepts
   double volume_tolerance = 0.01;
+  /// largest distance outside the reference, relative to `reference_diagonal`, that `passed()` accepts
   double outside_tolerance = 0.01;
-  /// time spent in TetGen, and in the whole check, in seconds
+  /// time spent in TetGen, in seconds
   double tetgen_seconds = 0.;
+  /// time spent in the whole check, in seconds
   double seconds = 0.;
   /// @}
 

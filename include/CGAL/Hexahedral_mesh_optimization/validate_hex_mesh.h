@@ -36,6 +36,7 @@ named by `section`. Vertex indices are those of the mesh (0-based);
 */
 struct Hex_mesh_defect
 {
+  /// what is wrong
   enum Kind {
     NO_HEXAHEDRA,            ///< the mesh has no hexahedron
     NON_FINITE_COORDINATE,   ///< a coordinate is NaN or infinite
@@ -48,7 +49,9 @@ struct Hex_mesh_defect
   /// the arrays of `Indexed_hex_mesh`, named as the MEDIT sections
   enum Section { VERTICES, HEXAHEDRA, QUADRILATERALS, TRIANGLES, EDGES, CORNERS, RIDGES };
 
+  /// what is wrong
   Kind kind = NO_HEXAHEDRA;
+  /// the array holding the offending element
   Section section = HEXAHEDRA;
   /// the offending element of `section` (0-based); 0 for `NO_HEXAHEDRA` and `REFERENCE_COUNT`
   std::size_t record = 0;
@@ -64,6 +67,7 @@ struct Hex_mesh_defect
   /// `NON_MANIFOLD_FACE`: the face (sorted vertex indices) and the two
   /// hexahedra already sharing it (`record` is the third)
   std::array<std::size_t, 4> face = {{0, 0, 0, 0}};
+  /// `NON_MANIFOLD_FACE`: the two hexahedra already sharing `face`
   std::array<std::size_t, 2> other_records = {{0, 0}};
 
   /// the MEDIT name of a section: "Vertices", "Hexahedra", ...
