@@ -207,6 +207,68 @@ inline std::string tetgen_error_message(int code)
 
 namespace tetgen_detail {
 
+#ifdef CGAL_HMO_HAVE_TETGEN
+/// TetGen's input: the points, and the triangles as one-polygon facets
+inline void fill_tetgen_input(const std::vector<Vec3>& points, const std::vector<Tri>& triangles, tetgenio& in)
+{
+  in.firstnumber = 0;
+  in.numberofpoints = int(points.size());
+  in.pointlist = new REAL[3 * points.size()];
+  for(std::size_t i = 0; i < points.size(); ++i)
+    for(int k = 0; k < 3; ++k)
+      in.pointlist[3 * i + k] = points[i][k];
+  in.numberoffacets = int(triangles.size());
+  in.facetlist = new tetgenio::facet[triangles.size()];
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    tetgenio::facet& fa = in.facetlist[f];
+    tetgenio::init(&fa);
+    fa.numberofpolygons = 1;
+    fa.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&fa.polygonlist[0]);
+    fa.polygonlist[0].numberofvertices = 3;
+    fa.polygonlist[0].vertexlist = new int[3];
+    for(int k = 0; k < 3; ++k)
+      fa.polygonlist[0].vertexlist[k] = int(triangles[f][k]);
+  }
+}
+
+/// the volume of TetGen's tetrahedra and, with `keep_tetrahedra`, the
+/// tetrahedra themselves
+inline void read_tetgen_output(const tetgenio& out, bool keep_tetrahedra, Surface_tetrahedralization& r)
+{
+  if(out.numberoftetrahedra <= 0 || out.numberofcorners < 4)
+  {
+    r.error = "TetGen produced no tetrahedron (the reference surface bounds no volume)";
+  }
+  else
+  {
+    const int nc = out.numberofcorners;
+    const REAL* P = out.pointlist;
+    auto pt = [&](int i) { return Vec3{P[3 * i], P[3 * i + 1], P[3 * i + 2]}; };
+    r.number_of_tetrahedra = std::size_t(out.numberoftetrahedra);
+    for(int t = 0; t < out.numberoftetrahedra; ++t)
+    {
+      const int* T = out.tetrahedronlist + nc * t;
+      r.volume += std::abs(tetrahedron_volume(pt(T[0]), pt(T[1]), pt(T[2]), pt(T[3])));
+    }
+    if(keep_tetrahedra)
+    {
+      r.points.reserve(std::size_t(out.numberofpoints));
+      for(int i = 0; i < out.numberofpoints; ++i)
+        r.points.push_back(pt(i));
+      r.tetrahedra.reserve(r.number_of_tetrahedra);
+      for(int t = 0; t < out.numberoftetrahedra; ++t)
+      {
+        const int* T = out.tetrahedronlist + nc * t;
+        r.tetrahedra.push_back({std::size_t(T[0]), std::size_t(T[1]), std::size_t(T[2]), std::size_t(T[3])});
+      }
+    }
+    r.ok = true;
+  }
+}
+#endif
+
 /// TetGen in this process: a failure that TetGen 1.5 reports by throwing
 /// crashes it (see the file comment), so this runs in a child process
 /// wherever one can be made.
@@ -224,58 +286,10 @@ inline Surface_tetrahedralization run_in_process(const std::vector<Vec3>& points
   try
   {
     tetgenio in, out;
-    in.firstnumber = 0;
-    in.numberofpoints = int(points.size());
-    in.pointlist = new REAL[3 * points.size()];
-    for(std::size_t i = 0; i < points.size(); ++i)
-      for(int k = 0; k < 3; ++k)
-        in.pointlist[3 * i + k] = points[i][k];
-    in.numberoffacets = int(triangles.size());
-    in.facetlist = new tetgenio::facet[triangles.size()];
-    for(std::size_t f = 0; f < triangles.size(); ++f)
-    {
-      tetgenio::facet& fa = in.facetlist[f];
-      tetgenio::init(&fa);
-      fa.numberofpolygons = 1;
-      fa.polygonlist = new tetgenio::polygon[1];
-      tetgenio::init(&fa.polygonlist[0]);
-      fa.polygonlist[0].numberofvertices = 3;
-      fa.polygonlist[0].vertexlist = new int[3];
-      for(int k = 0; k < 3; ++k)
-        fa.polygonlist[0].vertexlist[k] = int(triangles[f][k]);
-    }
+    fill_tetgen_input(points, triangles, in);
     char switches[] = "pzQ";
     tetrahedralize(switches, &in, &out);
-
-    if(out.numberoftetrahedra <= 0 || out.numberofcorners < 4)
-    {
-      r.error = "TetGen produced no tetrahedron (the reference surface bounds no volume)";
-    }
-    else
-    {
-      const int nc = out.numberofcorners;
-      const REAL* P = out.pointlist;
-      auto pt = [&](int i) { return Vec3{P[3 * i], P[3 * i + 1], P[3 * i + 2]}; };
-      r.number_of_tetrahedra = std::size_t(out.numberoftetrahedra);
-      for(int t = 0; t < out.numberoftetrahedra; ++t)
-      {
-        const int* T = out.tetrahedronlist + nc * t;
-        r.volume += std::abs(tetrahedron_volume(pt(T[0]), pt(T[1]), pt(T[2]), pt(T[3])));
-      }
-      if(keep_tetrahedra)
-      {
-        r.points.reserve(std::size_t(out.numberofpoints));
-        for(int i = 0; i < out.numberofpoints; ++i)
-          r.points.push_back(pt(i));
-        r.tetrahedra.reserve(r.number_of_tetrahedra);
-        for(int t = 0; t < out.numberoftetrahedra; ++t)
-        {
-          const int* T = out.tetrahedronlist + nc * t;
-          r.tetrahedra.push_back({std::size_t(T[0]), std::size_t(T[1]), std::size_t(T[2]), std::size_t(T[3])});
-        }
-      }
-      r.ok = true;
-    }
+    read_tetgen_output(out, keep_tetrahedra, r);
   }
   catch(int code)
   {
