@@ -3,7 +3,7 @@
 // visitor that prints progress as the stages run.
 //
 //   optimize_with_reference [mesh.{mesh,vtk,vtu}] [reference.{obj,off,ply,stl}] [target MSJ]
-//   (defaults: data/bunny_dualsheet.vtk, data/bunny_reference.obj, 0.3)
+//   (defaults: data/bunny_dualsheet.vtk, data/bunny_reference.obj, 0.2)
 //
 // Also shows the reference-surface functions of CGAL/hex_mesh_surface_error.h:
 // `IO::read_reference_surface()`, `hex_mesh_reference_fit()` (the test the
@@ -43,7 +43,10 @@ struct Print_progress : HMO::Default_optimization_visitor
   void stage_started(const std::string& name, std::size_t bad_elements)
   {
     ++stages;
-    std::cout << "  [" << name << "] started, " << bad_elements << " elements to fix" << std::endl;
+    std::cout << "  [" << name << "] started";
+    if(bad_elements > 0)
+      std::cout << ", " << bad_elements << " elements to fix";
+    std::cout << std::endl;
   }
   void round_finished(const std::string& /*stage*/, int /*round*/, std::size_t /*bad_elements_left*/)
   {
@@ -61,7 +64,7 @@ int main(int argc, char* argv[])
 {
   const std::string mesh_file = (argc > 1) ? argv[1] : std::string(HMO_EXAMPLE_DATA_DIR "/bunny_dualsheet.vtk");
   const std::string surface_file = (argc > 2) ? argv[2] : std::string(HMO_EXAMPLE_DATA_DIR "/bunny_reference.obj");
-  const double target_msj = (argc > 3) ? std::atof(argv[3]) : 0.3;
+  const double target_msj = (argc > 3) ? std::atof(argv[3]) : 0.2;
 
   Mesh mesh;
   CGAL::IO::Hex_mesh_io_error error;

@@ -248,7 +248,7 @@ check("--worst 0 lists nothing" NOT worst_zero_out MATCHES "worst elements")
 # report only: the input's 5 worst elements, text and JSON
 run(worst ${bunny} --worst 5 --report ${WORK}/worst.json)
 check("--worst 5 on the input (${worst_err})" worst_rc EQUAL 0)
-check("the text says what the ids are" worst_out MATCHES "  5 worst elements \\(id: 0-based, the cell id of ParaView; centre: mean of the 8 vertices\\):\n")
+check("the text says what the ids are" worst_out MATCHES "  5 worst elements \\(id: 0-based, the cell id of ParaView. centre: mean of the 8 vertices\\):\n")
 # the worst hexahedron of the bunny is 1446 (SJ -0.771097, as the
 # quality_report example finds with CGAL::hex_mesh_scaled_jacobians)
 string(REGEX MATCHALL "\n +[0-9]+ +-?[0-9]+\\.[0-9]+  \\([^\n]*\\)" rows "${worst_out}")
