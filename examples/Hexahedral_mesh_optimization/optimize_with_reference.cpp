@@ -7,9 +7,9 @@
 //
 // Also shows the reference-surface functions of CGAL/hex_mesh_surface_error.h:
 // `IO::read_reference_surface()`, `hex_mesh_reference_fit()` (the test the
-// optimisation makes before it moves anything), `hex_mesh_surface_distance()`
-// and the two `hex_mesh_surface_error()` overloads (against a triangle mesh,
-// and against the boundary of another hexahedral mesh).
+// optimisation makes before it moves anything), and both overloads of
+// `hex_mesh_surface_distance()` and `hex_mesh_surface_error()` (against a
+// triangle mesh, and against the boundary of another hexahedral mesh).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
@@ -125,5 +125,8 @@ int main(int argc, char* argv[])
   std::cout << "surface error after: " << CGAL::hex_mesh_surface_error(mesh, reference)
             << " (the optimiser measured " << r.surface_error << "); against the input's boundary: "
             << CGAL::hex_mesh_surface_error(mesh, input) << std::endl;
+  // the same against the boundary of the input, as distances in model units
+  const CGAL::Hex_mesh_surface_distance moved = CGAL::hex_mesh_surface_distance(mesh, input);
+  std::cout << "the boundary moved by at most " << moved.mesh_to_reference << " from the input's boundary" << std::endl;
   return (r.inverted_after == 0 && progress.stages > 0) ? 0 : 1;
 }
