@@ -28,10 +28,12 @@
 #endif
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <chrono>
 #include <csignal>
@@ -101,37 +103,83 @@ void install_stop_handlers()
 
 const char* signal_name(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal"; }
 
-/// Progress: one line per stage (and per round of long stages).
+/// Whether standard output is a terminal that understands "\r" and the
+/// clear-to-end-of-line sequence (not TERM=dumb): the progress then updates
+/// one line in place; otherwise (a pipe, a file, a test capturing the output)
+/// it prints plain lines.
+bool stdout_is_terminal()
+{
+  if(!isatty(STDOUT_FILENO))
+    return false;
+  const char* term = std::getenv("TERM");
+  return term == nullptr || std::strcmp(term, "dumb") != 0;
+}
+
+/// Progress of the stages, on `log`. Plain (not a terminal): one line when
+/// a stage starts, one every 2 seconds at most during long stages, one when
+/// it ends. On a terminal: the line of the stage running is rewritten in
+/// place ("\r", clear to the end of the line) with its name, round, elements
+/// left and the seconds elapsed, at most 10 times a second; the line of a
+/// stage that ends stays, as in the plain output.
 struct Progress_visitor : CGAL::Hexahedral_mesh_optimization::Default_optimization_visitor
 {
   std::ostream* log = nullptr;
+  bool in_place = false; ///< a terminal: rewrite the line of the running stage
   Clock::time_point start = Clock::now();
   Clock::time_point last_round = Clock::now();
+  bool line_open = false; ///< an in-place line is on the screen, without its newline
+
+  std::string elapsed() const { return "[" + format_fixed(seconds_since(start), 1) + " s] "; }
+  /// starts a line: on a terminal, over the in-place line
+  std::ostream& begin_line()
+  {
+    if(in_place)
+      *log << "\r\033[K";
+    line_open = false;
+    return *log << "  " << elapsed();
+  }
+  void end_in_place_line()
+  {
+    *log << std::flush;
+    line_open = true;
+  }
 
   void stage_started(const std::string& name, std::size_t bad)
   {
     if(!log) return;
-    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << name << ": started";
+    begin_line() << name << ": started";
     if(bad > 0) *log << ", " << bad << " elements to fix";
-    *log << std::endl;
+    if(in_place)
+      end_in_place_line();
+    else
+      *log << std::endl;
     last_round = Clock::now();
   }
   void round_finished(const std::string& stage, int round, std::size_t left)
   {
-    // long stages report at most every 2 seconds
-    if(!log || seconds_since(last_round) < 2.) return;
+    // plain: long stages report at most every 2 seconds; in place: 10 times a second
+    if(!log || seconds_since(last_round) < (in_place ? 0.1 : 2.)) return;
     last_round = Clock::now();
-    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << stage << ": round " << round + 1 << ", "
-         << left << " elements left" << std::endl;
+    begin_line() << stage << ": round " << round + 1 << ", " << left << " elements left";
+    if(in_place)
+      end_in_place_line();
+    else
+      *log << std::endl;
   }
   void stage_finished(const CGAL::Hexahedral_mesh_optimization::Stage_report& r)
   {
     if(!log) return;
-    *log << "  [" << format_fixed(seconds_since(start), 1) << " s] " << r.name << ": done in "
-         << format_fixed(r.seconds, 2) << " s, inverted " << r.inverted_before << " -> " << r.inverted_after
-         << ", MSJ " << format_fixed(r.msj_after, 3);
+    begin_line() << r.name << ": done in " << format_fixed(r.seconds, 2) << " s, inverted " << r.inverted_before
+                 << " -> " << r.inverted_after << ", MSJ " << format_fixed(r.msj_after, 3);
     if(!r.details.empty()) *log << "\n      " << r.details;
     *log << std::endl;
+  }
+  /// ends an in-place line left open (a run stopped inside a stage)
+  void finish()
+  {
+    if(log && line_open)
+      *log << "\r\033[K" << std::flush;
+    line_open = false;
   }
 };
 
@@ -141,11 +189,12 @@ struct Progress_visitor : CGAL::Hexahedral_mesh_optimization::Default_optimizati
 /// `time_limit`: the hard stop left to the optimisation (infinity: none).
 CGAL::Hexahedral_mesh_optimization::Optimization_result
 run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options, const Surface* reference,
-           double time_limit, std::ostream& log)
+           double time_limit, bool progress_in_place, std::ostream& log)
 {
   namespace HP = CGAL::hex_mesh_parameters;
   Progress_visitor visitor;
   if(!options.quiet) visitor.log = &log;
+  visitor.in_place = progress_in_place;
   if(!options.quiet)
     log << "\n" << (options.untangle_only ? "untangling" : "optimising") << " (" << mesh.hexahedra.size()
         << " hexahedra)\n";
@@ -168,6 +217,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
   }
   else
     r = options.untangle_only ? CGAL::untangle_hex_mesh(mesh, np) : CGAL::optimize_hex_mesh(mesh, np);
+  visitor.finish();
   if(!options.quiet)
   {
     log << "  result: inverted " << r.inverted_before << " -> " << r.inverted_after << ", MSJ "
@@ -274,6 +324,10 @@ int main(int argc, char** argv)
     before.quality = CGAL::hex_mesh_quality(mesh);
     before.certificate = CGAL::hex_mesh_validity_certificate(mesh);
     before.seconds = seconds_since(read_start);
+    const bool has_output = !options.output.empty();
+    // --worst: of the output, or of the input in report-only mode
+    if(options.worst > 0 && !has_output)
+      before.worst = worst_elements(mesh, CGAL::hex_mesh_scaled_jacobians(mesh), options.worst);
     if(!options.quiet)
     {
       print_quality_report(out, "before", before);
@@ -283,7 +337,6 @@ int main(int argc, char** argv)
     // ---------------------------------------------------- optimise, write
     Mesh_report after;
     Mesh input_mesh_for_check;
-    const bool has_output = !options.output.empty();
     if(has_output)
     {
       if(options.check && !has_reference) input_mesh_for_check = mesh; // the reference volume of --check
@@ -293,7 +346,7 @@ int main(int argc, char** argv)
                                  ? (std::max)(1e-9, options.time_limit - seconds_since(program_start))
                                  : std::numeric_limits<double>::infinity();
       const CGAL::Hexahedral_mesh_optimization::Optimization_result r =
-        run_stages(mesh, options, has_reference ? &reference : nullptr, time_left, out);
+        run_stages(mesh, options, has_reference ? &reference : nullptr, time_left, stdout_is_terminal(), out);
       after.seconds = seconds_since(start);
       const std::vector<double> sj = CGAL::hex_mesh_scaled_jacobians(mesh);
       after.file = options.output;
@@ -307,6 +360,8 @@ int main(int argc, char** argv)
       after.interrupted = r.interrupted || stop_requested.load();
       after.warnings = r.warnings;
       after.unresolved = r.unresolved;
+      if(options.worst > 0)
+        after.worst = worst_elements(mesh, sj, options.worst);
       print_run_warnings(r, reference_warning);
 
       CGAL::IO::Hex_mesh_fields fields;

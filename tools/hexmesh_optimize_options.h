@@ -40,6 +40,7 @@ struct Hexmesh_optimize_options
   bool pull_back = true;          ///< --no-pull-back
   bool relax_surface = true;      ///< --frozen-surface
   bool check = false;             ///< --check: TetGen reference-volume check of the output
+  std::size_t worst = 0;          ///< --worst N: list the N worst elements; 0: none
 };
 
 /// One command-line option. `value_name` is nullptr for a flag; `apply`
@@ -72,6 +73,35 @@ inline bool parse_number(const std::string& name, const std::string& text, doubl
     s << "option " << name << ": " << text << " is outside [" << min << ", " << max << "]";
     error = s.str();
     return false;
+  }
+  value = v;
+  return true;
+}
+
+/// Parses a non-negative whole number (digits only, at most `max`) for
+/// option `name`.
+inline bool parse_count(const std::string& name, const std::string& text, std::size_t max, std::size_t& value,
+                        std::string& error)
+{
+  bool digits = !text.empty();
+  for(char c : text)
+    digits = digits && std::isdigit(static_cast<unsigned char>(c));
+  if(!digits)
+  {
+    error = "option " + name + ": '" + text + "' is not a non-negative whole number";
+    return false;
+  }
+  std::size_t v = 0;
+  for(char c : text)
+  {
+    v = 10 * v + std::size_t(c - '0');
+    if(v > max)
+    {
+      std::ostringstream s;
+      s << "option " << name << ": " << text << " is larger than " << max;
+      error = s.str();
+      return false;
+    }
   }
   value = v;
   return true;
@@ -140,6 +170,11 @@ inline const std::vector<Option_spec>& option_table()
      "check the output against the reference volume (TetGen): volume, boundary self-intersection, "
      "vertices outside; exit status 3 when the check fails",
      [](O& o, const std::string&, std::string&) { o.check = true; return true; }},
+    {"--worst", "N",
+     "list the N worst elements of the output (of the input without OUTPUT), worst first: id (0-based, the cell "
+     "id of ParaView), scaled Jacobian and centre (mean of the 8 vertices); also in the --report JSON as "
+     "\"worst\" (default 0: none)",
+     [](O& o, const std::string& v, std::string& e) { return parse_count("--worst", v, 1000000000, o.worst, e); }},
     {"--quiet", nullptr,
      "print only warnings and errors",
      [](O& o, const std::string&, std::string&) { o.quiet = true; return true; }},

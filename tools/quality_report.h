@@ -14,7 +14,9 @@
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -25,6 +27,40 @@
 #include <vector>
 
 namespace hexmesh_optimize {
+
+/// One of the worst elements of a mesh (--worst).
+struct Worst_element
+{
+  std::size_t id = 0;            ///< 0-based index of the hexahedron (the cell id of ParaView)
+  double scaled_jacobian = 0.;   ///< its Verdict scaled Jacobian
+  std::array<double, 3> centre = {{0., 0., 0.}}; ///< the mean of its 8 vertices
+};
+
+/// The `n` elements of `mesh` with the lowest scaled Jacobian (`sj`, one
+/// value per hexahedron, as from `CGAL::hex_mesh_scaled_jacobians()`),
+/// worst first, ties by id.
+template <class HexMesh>
+std::vector<Worst_element> worst_elements(const HexMesh& mesh, const std::vector<double>& sj, std::size_t n)
+{
+  std::vector<std::size_t> ids(sj.size());
+  for(std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  n = (std::min)(n, ids.size());
+  auto worse = [&sj](std::size_t a, std::size_t b) { return sj[a] < sj[b] || (sj[a] == sj[b] && a < b); };
+  std::partial_sort(ids.begin(), ids.begin() + std::ptrdiff_t(n), ids.end(), worse);
+  std::vector<Worst_element> r(n);
+  for(std::size_t k = 0; k < n; ++k)
+  {
+    r[k].id = ids[k];
+    r[k].scaled_jacobian = sj[ids[k]];
+    for(std::size_t v : mesh.hexahedra[ids[k]])
+    {
+      r[k].centre[0] += CGAL::to_double(mesh.points[v].x()) / 8.;
+      r[k].centre[1] += CGAL::to_double(mesh.points[v].y()) / 8.;
+      r[k].centre[2] += CGAL::to_double(mesh.points[v].z()) / 8.;
+    }
+  }
+  return r;
+}
 
 /// The figures of one state of the mesh.
 struct Mesh_report
@@ -48,6 +84,8 @@ struct Mesh_report
   std::vector<CGAL::Hexahedral_mesh_optimization::Unresolved_element> unresolved;
   /// the exact validity certificate (`CGAL::hex_mesh_validity_certificate()`)
   CGAL::Hexahedral_mesh_optimization::Validity_certificate certificate;
+  /// --worst N: its N worst elements, worst first (empty: not asked for)
+  std::vector<Worst_element> worst;
 };
 
 inline std::string format_fixed(double v, int decimals)
@@ -118,6 +156,18 @@ inline void print_quality_report(std::ostream& out, const std::string& title, co
     out << "    " << bin_label(k, true) << std::setw(8) << c << " |" << std::string(bar, '#') << "\n";
     if(k + 1 == Q::histogram_bins / 2)
       out << "    ------------------------- 0 -- inverted (SJ < 0) above this line\n";
+  }
+  if(!r.worst.empty())
+  {
+    out << "  " << r.worst.size() << " worst elements (id: 0-based, the cell id of ParaView; centre: mean of the 8 vertices):\n"
+        << "    " << std::setw(10) << "id" << std::setw(17) << "scaled Jacobian" << "  centre\n";
+    for(const Worst_element& w : r.worst)
+    {
+      std::ostringstream c;
+      c << std::setprecision(6) << "(" << w.centre[0] << ", " << w.centre[1] << ", " << w.centre[2] << ")";
+      out << "    " << std::setw(10) << w.id << std::setw(17) << format_fixed(w.scaled_jacobian, 6) << "  " << c.str()
+          << "\n";
+    }
   }
   out << std::flush;
 }
@@ -211,6 +261,18 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
   for(int k = 0; k < Q::histogram_bins; ++k)
     s << (k ? ", " : "") << q.histogram[k];
   s << "]}";
+  if(!r.worst.empty())
+  {
+    s << ",\n" << in << "\"worst\": [";
+    for(std::size_t i = 0; i < r.worst.size(); ++i)
+    {
+      const Worst_element& w = r.worst[i];
+      s << (i ? ",\n" : "\n") << in << "  {\"id\": " << w.id << ", \"scaled_jacobian\": " << json_number(w.scaled_jacobian)
+        << ", \"centre\": [" << json_number(w.centre[0]) << ", " << json_number(w.centre[1]) << ", "
+        << json_number(w.centre[2]) << "]}";
+    }
+    s << "\n" << in << "]";
+  }
   if(with_output_fields || r.seconds >= 0.)
     s << ",\n" << in << "\"seconds\": " << (r.seconds >= 0. ? json_number(r.seconds) : "null");
   if(with_output_fields)
