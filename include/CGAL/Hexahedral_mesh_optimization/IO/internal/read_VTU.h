@@ -166,17 +166,8 @@ private:
       }
       if(open_elements.empty())
       {
-        if(name != "VTKFile")
-          return ctx_.fail(tag.line, "not a VTK XML file: the root element is <" + name + ">, not <VTKFile>");
-        const std::string* type = tag.attribute("type");
-        if(type == nullptr || *type != "UnstructuredGrid")
-          return ctx_.fail(tag.line, "VTK XML file of type '" + (type ? *type : std::string()) +
-                                       "': only UnstructuredGrid (.vtu) is supported");
-        const std::string* compressor = tag.attribute("compressor");
-        if(compressor != nullptr && !compressor->empty())
-          return ctx_.fail(tag.line, "compressed data (compressor=\"" + *compressor +
-                                       "\") is not supported: save the .vtu with ascii data");
-        root_seen_ = true;
+        if(!open_root(tag, name))
+          return false;
       }
       else if(name == "AppendedData")
       {
@@ -194,25 +185,8 @@ private:
       }
       else if(name == "DataArray")
       {
-        const std::string& parent = open_elements.back();
-        const std::string* array_name = tag.attribute("Name");
-        Vtu_data_array* a = nullptr;
-        if(parent == "Points" && !points_.found)
-          a = &points_;
-        else if(parent == "Cells" && array_name != nullptr)
-        {
-          if(*array_name == "connectivity") a = &connectivity_;
-          else if(*array_name == "offsets") a = &offsets_;
-          else if(*array_name == "types") a = &types_;
-        }
-        if(a != nullptr)
-        {
-          if(a->found)
-            return ctx_.fail(tag.line, "second " + a->label + " at line " + std::to_string(tag.line));
-          a->open(tag);
-          if(!tag.self_closing)
-            open_array = a;
-        }
+        if(!open_data_array(tag, open_elements.back(), open_array))
+          return false;
       }
       if(!tag.self_closing)
         open_elements.push_back(name);
@@ -225,6 +199,48 @@ private:
       return ctx_.fail(0, "no <Piece> element");
     if(!appended_data && !open_elements.empty())
       return ctx_.fail(xml.line(), "truncated XML: <" + open_elements.back() + "> is not closed at the end of the file");
+    return true;
+  }
+
+  // the root element: <VTKFile type="UnstructuredGrid">, uncompressed
+  bool open_root(const Xml_tag& tag, const std::string& name)
+  {
+    if(name != "VTKFile")
+      return ctx_.fail(tag.line, "not a VTK XML file: the root element is <" + name + ">, not <VTKFile>");
+    const std::string* type = tag.attribute("type");
+    if(type == nullptr || *type != "UnstructuredGrid")
+      return ctx_.fail(tag.line, "VTK XML file of type '" + (type ? *type : std::string()) +
+                                   "': only UnstructuredGrid (.vtu) is supported");
+    const std::string* compressor = tag.attribute("compressor");
+    if(compressor != nullptr && !compressor->empty())
+      return ctx_.fail(tag.line, "compressed data (compressor=\"" + *compressor +
+                                   "\") is not supported: save the .vtu with ascii data");
+    root_seen_ = true;
+    return true;
+  }
+
+  // a <DataArray> in `parent`: the points, or one of the three arrays of the
+  // cells (the others are skipped); `open_array` receives it when its text
+  // follows
+  bool open_data_array(const Xml_tag& tag, const std::string& parent, Vtu_data_array*& open_array)
+  {
+    const std::string* array_name = tag.attribute("Name");
+    Vtu_data_array* a = nullptr;
+    if(parent == "Points" && !points_.found)
+      a = &points_;
+    else if(parent == "Cells" && array_name != nullptr)
+    {
+      if(*array_name == "connectivity") a = &connectivity_;
+      else if(*array_name == "offsets") a = &offsets_;
+      else if(*array_name == "types") a = &types_;
+    }
+    if(a == nullptr)
+      return true;
+    if(a->found)
+      return ctx_.fail(tag.line, "second " + a->label + " at line " + std::to_string(tag.line));
+    a->open(tag);
+    if(!tag.self_closing)
+      open_array = a;
     return true;
   }
 
