@@ -53,7 +53,7 @@ check("option without its value exits 2 (got ${novalue_rc})" novalue_rc EQUAL 2)
 
 run(badext ${bunny} ${WORK}/out.txt)
 check("an unknown output format exits 2 (got ${badext_rc})" badext_rc EQUAL 2)
-check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk or .vtu")
+check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e")
 check("nothing written" NOT EXISTS ${WORK}/out.txt)
 
 run(three a.mesh b.mesh c.mesh)
