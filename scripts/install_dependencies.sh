@@ -5,11 +5,12 @@
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 
-packages=(cmake make g++ libcgal-dev libeigen3-dev libboost-dev libtet1.5-dev libtbb-dev)
+packages=(cmake make g++ libcgal-dev libeigen3-dev libboost-dev libtet1.5-dev libtbb-dev libexodusii-dev libnetcdf-dev)
 # --tests: also what the whole test suite needs (clang and its runtime for
-# the fuzz targets of the readers)
+# the fuzz targets of the readers; meshio and gmsh, readers of our
+# .msh/.inp/.exo files written by others)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(clang libclang-rt-14-dev)
+  packages+=(clang libclang-rt-14-dev python3-meshio python3-netcdf4 gmsh)
 fi
 
 missing=()

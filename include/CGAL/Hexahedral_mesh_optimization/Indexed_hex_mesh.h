@@ -118,8 +118,8 @@ struct Indexed_hex_mesh
   /// are present, unique and positive, and number from 1 otherwise.
   std::vector<long long> point_ids;
   std::vector<long long> hexahedron_ids;
-  /// the Abaqus element type of the hexahedra (`C3D8`, `C3D8R`, `C3D8I`);
-  /// empty: `C3D8`
+  /// the Abaqus element type of the hexahedra (`C3D8`, `C3D8R`, `C3D8I`,
+  /// `C3D8H`, ...); empty: `C3D8`
   std::string abaqus_element_type;
   /// @}
 

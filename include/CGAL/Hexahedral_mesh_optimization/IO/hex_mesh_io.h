@@ -220,8 +220,8 @@ bool read_MSH(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
 \brief Reads an Abaqus input file (`.inp`) holding hexahedra.
 
 Read (keywords case-insensitive, `**` comments): `*NODE` (3 coordinates;
-`NSET=` puts the nodes in that set), `*ELEMENT` of `TYPE=C3D8`, `C3D8R` or
-`C3D8I` (records may continue on the next lines; `ELSET=` puts the
+`NSET=` puts the nodes in that set), `*ELEMENT` of an 8-node hexahedral
+type (`TYPE=C3D8`, `C3D8R`, `C3D8I`, `C3D8H`, `C3D8RH`, ...; records may continue on the next lines; `ELSET=` puts the
 elements in that set), `*NSET` and `*ELSET` (ids or names of sets already
 defined, or `GENERATE` ranges `first, last[, step]`). Elements of other types
 are skipped with one warning per type, and so are the members of sets that

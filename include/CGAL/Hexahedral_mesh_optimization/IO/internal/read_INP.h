@@ -59,6 +59,19 @@ inline std::vector<std::string_view> split_commas(std::string_view l)
   return fields;
 }
 
+/// whether an Abaqus element type (upper case) is an 8-node hexahedron:
+/// C3D8 and its variants (R reduced integration, I incompatible modes, H
+/// hybrid, T coupled temperature: C3D8R, C3D8RH, C3D8T, ...)
+inline bool is_abaqus_hex_type(const std::string& type)
+{
+  if(type.compare(0, 4, "C3D8") != 0)
+    return false;
+  for(std::size_t i = 4; i < type.size(); ++i)
+    if(type[i] != 'R' && type[i] != 'I' && type[i] != 'H' && type[i] != 'T')
+      return false;
+  return true;
+}
+
 template <class Point>
 class Inp_reader
 {
@@ -92,7 +105,7 @@ public:
       return ctx_.fail(0, "no *NODE data");
     if(raw_hexes_.empty())
       return ctx_.fail(0, other_elements_.empty() ? "no *ELEMENT data"
-                                                  : "no hexahedra (*ELEMENT of TYPE=C3D8, C3D8R or C3D8I)");
+                                                  : "no hexahedra (*ELEMENT of TYPE=C3D8, C3D8R, C3D8I, C3D8H, ...)");
     // the nodes of the hexahedra, which may come before their *NODE lines
     mesh_.hexahedra.resize(raw_hexes_.size());
     for(std::size_t h = 0; h < raw_hexes_.size(); ++h)
@@ -184,7 +197,7 @@ private:
       if(!parameter(fields, "TYPE", value))
         return fail("no TYPE= parameter");
       type_ = to_upper(value);
-      mode_ = (type_ == "C3D8" || type_ == "C3D8R" || type_ == "C3D8I") ? Mode::hex : Mode::other_element;
+      mode_ = is_abaqus_hex_type(type_) ? Mode::hex : Mode::other_element;
       if(mode_ == Mode::hex)
       {
         if(mesh_.abaqus_element_type.empty())

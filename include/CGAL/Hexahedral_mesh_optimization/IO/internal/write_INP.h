@@ -10,6 +10,7 @@
 // hexahedra, the vertex sets as *NSET and the hexahedron sets as *ELSET.
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Id_map.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_INP.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
@@ -50,7 +51,7 @@ bool write_INP_file(const std::string& fname, const Indexed_hex_mesh<Point>& mes
   if(!check_before_writing(fname, mesh, CGAL::IO::Hex_mesh_fields(), err))
     return false;
   const std::string type = mesh.abaqus_element_type.empty() ? std::string("C3D8") : mesh.abaqus_element_type;
-  if(type != "C3D8" && type != "C3D8R" && type != "C3D8I")
+  if(!is_abaqus_hex_type(type))
     return write_failure(fname, err, "Abaqus element type '" + type + "' is not an 8-node hexahedron (C3D8, C3D8R, C3D8I)");
   const std::vector<long long> node_ids = ids_for_writing(mesh.point_ids, mesh.points.size());
   const std::vector<long long> hex_ids = ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
