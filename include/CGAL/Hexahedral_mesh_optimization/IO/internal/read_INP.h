@@ -120,7 +120,7 @@ public:
       }
     for(const auto& s : skipped_types_)
       ctx_.warn("skipped " + std::to_string(s.second.first) + " elements of type " + s.first + " (first line " +
-                std::to_string(s.second.second) + "): only C3D8, C3D8R and C3D8I are read");
+                std::to_string(s.second.second) + "): only 8-node hexahedra (C3D8, C3D8R, C3D8I, C3D8H, ...) are read");
     for(const auto& s : skipped_keywords_)
       ctx_.warn("skipped keyword *" + s.first + " (" + std::to_string(s.second.first) + " times, first line " +
                 std::to_string(s.second.second) + ")");
@@ -383,6 +383,9 @@ private:
           other = i;
       if(other == sets.size())
         return fail("expected an id or the name of a set, found " + quote_token(f));
+      // a bound on repeated members, against sets that double one another
+      if(sets[set_].indices.size() + sets[other].indices.size() > 8 * (mesh_.points.size() + raw_hexes_.size()) + 4096)
+        return fail("set " + quote_token(sets[set_].name) + " grows beyond 8 times the mesh: sets repeated in one another?");
       const std::vector<std::size_t> members = sets[other].indices;
       sets[set_].indices.insert(sets[set_].indices.end(), members.begin(), members.end());
     }

@@ -571,7 +571,7 @@ private:
       std::size_t where = sc_.offset();
       if(binary_)
       {
-        if(!value(type, "an element type", false) || !value(count, "a number of elements", false) ||
+        if(!value(type, "an element type", false) || !value(count, "a number of elements", false, 1) ||
            !value(ntags, "a number of tags", false))
           return false;
         if(count > n - done)
