@@ -1124,11 +1124,16 @@ int sample_tool(int argc, char** argv)
     for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
       ids.push_back(double(h));
     fields.cell_scalars.push_back({"scaled_jacobian", ids});
+    // meshio (7.0) reads binary $ElementData (and 2.2 binary $Nodes) only
+    // when the tags are 1..n in order: the binary samples have no ids
+    Mesh no_ids = m;
+    no_ids.hexahedron_ids.clear();
+    no_ids.point_ids.clear();
     Hex_mesh_io_error err;
     bool ok = CGAL::IO::write_MSH(dir + "/ours_41_ascii.msh", m, fields, &err, CGAL::IO::Gmsh_version::v4_1, false) &&
-              CGAL::IO::write_MSH(dir + "/ours_41_binary.msh", m, fields, &err, CGAL::IO::Gmsh_version::v4_1, true) &&
+              CGAL::IO::write_MSH(dir + "/ours_41_binary.msh", no_ids, fields, &err, CGAL::IO::Gmsh_version::v4_1, true) &&
               CGAL::IO::write_MSH(dir + "/ours_22_ascii.msh", m, fields, &err, CGAL::IO::Gmsh_version::v2_2, false) &&
-              CGAL::IO::write_MSH(dir + "/ours_22_binary.msh", m, fields, &err, CGAL::IO::Gmsh_version::v2_2, true) &&
+              CGAL::IO::write_MSH(dir + "/ours_22_binary.msh", no_ids, fields, &err, CGAL::IO::Gmsh_version::v2_2, true) &&
               CGAL::IO::write_INP(dir + "/ours.inp", m, &err);
 #ifdef CGAL_HMO_HAVE_EXODUS
     ok = ok && CGAL::IO::write_EXODUS(dir + "/ours.exo", e, &err);
