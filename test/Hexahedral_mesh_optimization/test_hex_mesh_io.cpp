@@ -986,6 +986,27 @@ void test_simulation_round_trips()
     bad.hexahedron_references[0] = 0;
     HMO_CHECK(!CGAL::IO::write_EXODUS(path("bad.exo"), bad, &err));
     HMO_CHECK(contains(err.message, "element block ids must be positive") && !hmo_test::file_exists(path("bad.exo")));
+    // netCDF reads a file cut short as zeros, without an error: the reader
+    // checks the size against the variables and the indices against 0
+    const std::string exo = read_text(path("grid.exo"));
+    write_text(path("cut.exo"), exo.substr(0, exo.size() * 3 / 4));
+    expect_read_failure(path("cut.exo"), {"truncated file"});
+    Mesh big;  // 12^3 hexahedra: the data outweighs the header
+    const std::size_t n = 12;
+    const auto id = [n](std::size_t i, std::size_t j, std::size_t k) { return i + (n + 1) * (j + (n + 1) * k); };
+    for(std::size_t k = 0; k <= n; ++k)
+      for(std::size_t j = 0; j <= n; ++j)
+        for(std::size_t i = 0; i <= n; ++i)
+          big.points.push_back(Point(double(i), double(j), double(k)));
+    for(std::size_t k = 0; k < n; ++k)
+      for(std::size_t j = 0; j < n; ++j)
+        for(std::size_t i = 0; i < n; ++i)
+          big.hexahedra.push_back({{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                    id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)}});
+    HMO_CHECK(CGAL::IO::write_EXODUS(path("big.exo"), big, &err));
+    const std::string big_exo = read_text(path("big.exo"));
+    write_text(path("big_cut.exo"), big_exo.substr(0, big_exo.size() - 1000));
+    expect_read_failure(path("big_cut.exo"), {"truncated file: ", "bytes, its variables need at least"});
     write_text(path("text.exo"), "not netcdf\n");
     expect_read_failure(path("text.exo"), {"not an Exodus II (netCDF) file"});
 #else

@@ -30,6 +30,7 @@
 
 #ifdef CGAL_HMO_HAVE_EXODUS
 #include <exodusII.h>
+#include <netcdf.h>
 #include <unistd.h>
 #endif
 
@@ -50,6 +51,55 @@ struct Exodus_file
       ex_close(id);
   }
 };
+
+/// A classic netCDF file cut short reads as zeros past its end, without an
+/// error (measured with libnetcdf 4.9 and libexodusii 6.02): the file must
+/// be at least as long as its variables. (netCDF-4 files are HDF5 files,
+/// which detect truncation themselves, and may be compressed.)
+inline bool netcdf_file_complete(int ncid, const std::string& fname, std::string& why)
+{
+  int format = 0;
+  if(nc_inq_format(ncid, &format) != NC_NOERR)
+    return true;
+  if(format != NC_FORMAT_CLASSIC && format != NC_FORMAT_64BIT_OFFSET && format != NC_FORMAT_CDF5)
+    return true;
+  int variables = 0;
+  if(nc_inq_nvars(ncid, &variables) != NC_NOERR)
+    return true;
+  unsigned long long needed = 0;
+  for(int v = 0; v < variables; ++v)
+  {
+    nc_type type;
+    int dimensions = 0;
+    int ids[NC_MAX_VAR_DIMS];
+    if(nc_inq_var(ncid, v, nullptr, &type, &dimensions, ids, nullptr) != NC_NOERR)
+      return true;
+    std::size_t type_size = 0;
+    if(nc_inq_type(ncid, type, nullptr, &type_size) != NC_NOERR)
+      return true;
+    unsigned long long n = type_size;
+    for(int d = 0; d < dimensions; ++d)
+    {
+      std::size_t length = 0;
+      if(nc_inq_dimlen(ncid, ids[d], &length) != NC_NOERR)
+        return true;
+      n *= length;
+    }
+    needed += n;
+  }
+  std::FILE* file = std::fopen(fname.c_str(), "rb");
+  if(file == nullptr)
+    return true;
+  std::fseek(file, 0, SEEK_END);
+  const long size = std::ftell(file);
+  std::fclose(file);
+  if(size >= 0 && static_cast<unsigned long long>(size) < needed)
+  {
+    why = "truncated file: " + std::to_string(size) + " bytes, its variables need at least " + std::to_string(needed);
+    return false;
+  }
+  return true;
+}
 
 inline bool exodus_hex_type(const char* type)
 {
@@ -78,6 +128,9 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
   if(f.id < 0)
     return ctx.fail(0, "not an Exodus II (netCDF) file, or a damaged one");
   ex_set_max_name_length(f.id, 255);
+  std::string why;
+  if(!netcdf_file_complete(f.id, fname, why))
+    return ctx.fail(0, why);
   char title[MAX_LINE_LENGTH + 1] = {0};
   int dim = 0, nodes = 0, elems = 0, blocks = 0, node_sets = 0, side_sets = 0;
   if(ex_get_init(f.id, title, &dim, &nodes, &elems, &blocks, &node_sets, &side_sets) < 0)
@@ -120,7 +173,8 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
         const int v = conn[8 * e + k];
         if(v < 1 || v > nodes)
           return ctx.fail(0, "element block " + std::to_string(id) + ", element " + std::to_string(e + 1) +
-                               ": node " + std::to_string(v) + " out of range (1.." + std::to_string(nodes) + ")");
+                               ": node " + std::to_string(v) + " out of range (1.." + std::to_string(nodes) + ")" +
+                               (v == 0 ? ": truncated file?" : ""));
         h[k] = static_cast<std::size_t>(v - 1);
       }
       mesh.hexahedra.push_back(h);
@@ -166,7 +220,8 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
         if(entries[i] < 1 || entries[i] > bound || (side && (extra[i] < 1 || extra[i] > 6)))
           return ctx.fail(0, label + std::to_string(id) + ", entry " + std::to_string(i + 1) + ": " +
                                (side ? "element " : "node ") + std::to_string(entries[i]) +
-                               (side ? ", side " + std::to_string(extra[i]) : std::string()) + " out of range");
+                               (side ? ", side " + std::to_string(extra[i]) : std::string()) + " out of range" +
+                               (entries[i] == 0 ? ": truncated file?" : ""));
       if(side)
       {
         Named_side_set s{set_name, {}};
