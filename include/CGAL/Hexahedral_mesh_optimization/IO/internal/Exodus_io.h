@@ -188,12 +188,18 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
     return ctx.fail(0, "the header announces " + std::to_string(elems) + " elements, the blocks hold " +
                          std::to_string(mesh.hexahedra.size()));
   // id maps (absent maps read as 1..n)
-  std::vector<int> map(x.size());
-  if(nodes > 0 && ex_get_id_map(f.id, EX_NODE_MAP, map.data()) >= 0)
-    mesh.point_ids.assign(map.begin(), map.end());
-  map.assign(mesh.hexahedra.size(), 0);
-  if(elems > 0 && ex_get_id_map(f.id, EX_ELEM_MAP, map.data()) >= 0)
-    mesh.hexahedron_ids.assign(map.begin(), map.end());
+  for(int element_map = 0; element_map < 2; ++element_map)
+  {
+    std::vector<int> map(element_map ? mesh.hexahedra.size() : x.size());
+    if(map.empty() || ex_get_id_map(f.id, element_map ? EX_ELEM_MAP : EX_NODE_MAP, map.data()) < 0)
+      continue;
+    for(std::size_t i = 0; i < map.size(); ++i)
+      if(map[i] <= 0)
+        return ctx.fail(0, std::string(element_map ? "element" : "node") + " number map, entry " +
+                             std::to_string(i + 1) + ": id " + std::to_string(map[i]) + " is not positive" +
+                             (map[i] == 0 ? ": truncated file?" : ""));
+    (element_map ? mesh.hexahedron_ids : mesh.point_ids).assign(map.begin(), map.end());
+  }
   // node sets and side sets
   for(int side = 0; side < 2; ++side)
   {

@@ -464,9 +464,7 @@ private:
         return fail_here("bad node block header (entity dimension " + std::to_string(dim) + ", parametric " +
                          std::to_string(parametric) + ")");
       const std::size_t extra = parametric == 1 ? static_cast<std::size_t>(dim) : 0;
-      const std::size_t first = tags_.size();
       tags_.clear();
-      (void)first;
       std::vector<std::size_t> where;
       for(long long i = 0; i < count; ++i)
       {
