@@ -254,7 +254,6 @@ private:
   {
     const std::string end = "$End" + section_;
     // search the bytes, which may be binary, for the end marker at the start of a line
-    Token t;
     for(;;)
     {
       std::string_view l;
