@@ -956,8 +956,10 @@ void test_simulation_round_trips()
     HMO_CHECK(CGAL::IO::read_hex_mesh(path("grid.inp"), r, &err, &warnings));
     HMO_CHECK(same_volume(m, r));
     HMO_CHECK(same_sets(r.vertex_sets, m.vertex_sets) && same_sets(r.hexahedron_sets, m.hexahedron_sets));
+    HMO_CHECK(same_side_sets(r.side_sets, m.side_sets));
     HMO_CHECK(r.point_ids == m.point_ids && r.hexahedron_ids == m.hexahedron_ids);
     HMO_CHECK(r.abaqus_element_type == "C3D8R");
+    HMO_CHECK(contains(read_text(path("grid.inp")), "*SURFACE, NAME=lid, TYPE=ELEMENT\n993, S2\n"));
     HMO_CHECK(warnings.empty());
     HMO_CHECK(contains(read_text(path("grid.inp")), "*ELEMENT, TYPE=C3D8R\n1000, 100, 103, 112, 109, 127, 130, 139, 136\n"));
   }
@@ -1110,6 +1112,29 @@ void test_inp_errors()
     HMO_CHECK(skipped_s4r && dropped);
     HMO_CHECK(warnings.size() == 4);  // S4R, *MATERIAL, *ELASTIC, the dropped member
   }
+  // element-based surfaces: the Abaqus faces S1..S6 of the unit cube are the
+  // documented local faces (Named_side_set) of the same geometric face
+  {
+    const Mesh m = expect_read_text("surface.inp", inp_cube_nodes +
+                                                     "*ELEMENT, TYPE=C3D8, ELSET=cube\n5, 1, 2, 3, 4, 5, 6, 7, 8\n"
+                                                     "*SURFACE, NAME=all\n5, S1\n5, S2\n5, S3\n5, S4\n5, S5\n"
+                                                     "*Surface, name=all, type=element\ncube, s6\n");
+    static const int face_vertices[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
+                                            {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+    // S1 z = 0, S2 z = 1, S3 y = 0, S4 x = 1, S5 y = 1, S6 x = 0
+    static const int axis[6] = {2, 2, 1, 0, 1, 0};
+    static const double value[6] = {0., 1., 0., 1., 1., 0.};
+    HMO_CHECK(m.side_sets.size() == 1 && m.side_sets[0].sides.size() == 6);
+    for(std::size_t s = 0; s < 6 && m.side_sets.size() == 1 && s < m.side_sets[0].sides.size(); ++s)
+    {
+      const auto side = m.side_sets[0].sides[s];
+      HMO_CHECK(side.first == 0);
+      for(int k = 0; k < 4; ++k)
+        HMO_CHECK(m.points[m.hexahedra[0][std::size_t(face_vertices[side.second][k])]][axis[s]] == value[s]);
+    }
+  }
+  expect_read_failure_text("face.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n5, 1, 2, 3, 4, 5, 6, 7, 8\n*SURFACE, NAME=s\n5, S7\n",
+                           {"*SURFACE (line 13): face 'S7' of an 8-node hexahedron must be S1..S6"}, 13);
   expect_read_failure_text("nonode.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 9\n",
                            {"element 1 (line 11): node 9 is not defined by *NODE"}, 11);
   expect_read_failure_text("short.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7\n",

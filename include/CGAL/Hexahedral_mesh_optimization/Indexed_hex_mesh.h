@@ -34,12 +34,14 @@ struct Named_index_set
 \ingroup PkgHexahedralMeshOptimizationRef
 
 \brief A named set of hexahedron faces (an Exodus II side set, an Abaqus
-surface): each side is a hexahedron index and a local face number 0..5.
+element-based surface): each side is a hexahedron index and a local face
+number 0..5.
 
-The faces are numbered as in Exodus II, against the vertex order of
-`Indexed_hex_mesh` (0-3 bottom, `i+4` above `i`): face 0 = (0,1,5,4),
-1 = (1,2,6,5), 2 = (2,3,7,6), 3 = (0,4,7,3), 4 = (0,3,2,1) (bottom),
-5 = (4,5,6,7) (top).
+The faces are numbered as in Exodus II (side `i+1` there), against the
+vertex order of `Indexed_hex_mesh` (0-3 bottom, `i+4` above `i`): face 0 =
+(0,1,5,4), 1 = (1,2,6,5), 2 = (2,3,7,6), 3 = (0,4,7,3), 4 = (0,3,2,1)
+(bottom), 5 = (4,5,6,7) (top); the Abaqus faces of C3D8 are S3, S4, S5, S6,
+S1, S2 in this order.
 */
 struct Named_side_set
 {
@@ -102,7 +104,8 @@ struct Indexed_hex_mesh
   /// `hexahedron_references` above holds the group of each hexahedron: the
   /// MEDIT reference, the gmsh physical tag, the Exodus II element block id
   /// (0: none). The sets below survive a read and write in the formats that
-  /// have them (Abaqus `.inp`, Exodus II) and are ignored by the others.
+  /// have them (Abaqus `.inp`, Exodus II) and are ignored by the others
+  /// (gmsh keeps the references and their names only).
   /// @{
   /// names of hexahedron references (gmsh physical names, Exodus block names)
   std::map<int, std::string> hexahedron_reference_names;
@@ -110,7 +113,7 @@ struct Indexed_hex_mesh
   std::vector<Named_index_set> vertex_sets;
   /// named hexahedron sets (Abaqus `*ELSET`)
   std::vector<Named_index_set> hexahedron_sets;
-  /// named side sets (Exodus side sets)
+  /// named side sets (Exodus side sets, Abaqus element-based `*SURFACE`)
   std::vector<Named_side_set> side_sets;
   /// the ids of the vertices and hexahedra in the file read (gmsh node and
   /// element tags, Abaqus and Exodus ids), positive; empty, or as long as

@@ -223,7 +223,9 @@ Read (keywords case-insensitive, `**` comments): `*NODE` (3 coordinates;
 `NSET=` puts the nodes in that set), `*ELEMENT` of an 8-node hexahedral
 type (`TYPE=C3D8`, `C3D8R`, `C3D8I`, `C3D8H`, `C3D8RH`, ...; records may continue on the next lines; `ELSET=` puts the
 elements in that set), `*NSET` and `*ELSET` (ids or names of sets already
-defined, or `GENERATE` ranges `first, last[, step]`). Elements of other types
+defined, or `GENERATE` ranges `first, last[, step]`) and element-based
+`*SURFACE` (lines `element or element set, S1..S6`, into `mesh.side_sets`
+with the faces renumbered as in `Named_side_set`). Elements of other types
 are skipped with one warning per type, and so are the members of sets that
 name them; other keywords (`*HEADING`, `*MATERIAL`, `*STEP`, ...) are skipped
 with one warning per keyword. Node and element ids are any positive integers,
@@ -407,7 +409,8 @@ bool write_MSH(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
 
 \brief Writes `mesh` as an Abaqus input file (`.inp`): `*NODE`, one
 `*ELEMENT` block of type `mesh.abaqus_element_type` (`C3D8` when empty), then
-`mesh.vertex_sets` as `*NSET` and `mesh.hexahedron_sets` as `*ELSET`.
+`mesh.vertex_sets` as `*NSET`, `mesh.hexahedron_sets` as `*ELSET` and
+`mesh.side_sets` as element-based `*SURFACE` (one `id, Sn` line a side).
 `mesh.hexahedron_references` are not written (the format has no per-element
 integer); put such groups in `mesh.hexahedron_sets` to keep them. Ids are `mesh.point_ids` and `mesh.hexahedron_ids` when present, unique and
 positive, 1..n otherwise. Parameters and result as for `write_MEDIT()`.

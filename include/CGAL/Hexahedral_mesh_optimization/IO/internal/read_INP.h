@@ -79,7 +79,7 @@ class Inp_reader
   typedef typename Kernel_traits<Point>::Kernel Kernel;
   typedef Hex_mesh_defect D;
 
-  enum class Mode { none, skip, node, hex, other_element, nset, elset };
+  enum class Mode { none, skip, node, hex, other_element, nset, elset, surface };
 
 public:
   Inp_reader(Text_scanner& sc, const Read_context& ctx) : sc_(sc), ctx_(ctx) {}
@@ -226,6 +226,18 @@ private:
       mode_ = nodes ? Mode::nset : Mode::elset;
       set_ = nodes ? set_index(mesh_.vertex_sets, value) : set_index(mesh_.hexahedron_sets, value);
     }
+    else if(name == "SURFACE" && (!parameter(fields, "TYPE", value) || iequals(value, "ELEMENT")))
+    {
+      if(!parameter(fields, "NAME", value) || value.empty())
+        return fail("no NAME= parameter");
+      mode_ = Mode::surface;
+      set_ = mesh_.side_sets.size();
+      for(std::size_t i = 0; i < mesh_.side_sets.size(); ++i)
+        if(iequals(mesh_.side_sets[i].name, value))
+          set_ = i;
+      if(set_ == mesh_.side_sets.size())
+        mesh_.side_sets.push_back(Named_side_set{value, {}});
+    }
     else
     {
       mode_ = Mode::skip;
@@ -275,6 +287,8 @@ private:
     case Mode::nset:
     case Mode::elset:
       return set_members(fields, mode_ == Mode::nset);
+    case Mode::surface:
+      return surface_sides(fields);
     }
     return true;
   }
@@ -390,6 +404,37 @@ private:
       sets[set_].indices.insert(sets[set_].indices.end(), members.begin(), members.end());
     }
     return true;
+  }
+
+  /// a line of an element-based *SURFACE: "element id or element set, Sn"
+  bool surface_sides(const std::vector<std::string_view>& fields)
+  {
+    if(fields.size() != 2)
+      return fail("expected 'element or element set, face (S1..S6)', found " + std::to_string(fields.size()) + " values");
+    const std::string face = to_upper(fields[1]);
+    if(face.size() != 2 || face[0] != 'S' || face[1] < '1' || face[1] > '6')
+      return fail("face " + quote_token(fields[1]) + " of an 8-node hexahedron must be S1..S6");
+    // Abaqus faces S1..S6 as local faces of Named_side_set (Exodus numbering)
+    static const int local_face[6] = {4, 5, 0, 1, 2, 3};
+    const int local = local_face[face[1] - '1'];
+    std::vector<std::pair<std::size_t, int> >& sides = mesh_.side_sets[set_].sides;
+    long long id = 0;
+    if(parse_integer(fields[0], id) == Number_status::ok)
+    {
+      const std::size_t h = element_ids_.find(id);
+      if(h == Id_map::none)
+        return fail("element " + std::to_string(id) + " is not a hexahedron defined before");
+      sides.push_back({h, local});
+      return true;
+    }
+    for(const Named_index_set& set : mesh_.hexahedron_sets)
+      if(iequals(set.name, fields[0]))
+      {
+        for(std::size_t h : set.indices)
+          sides.push_back({h, local});
+        return true;
+      }
+    return fail("expected an element id or the name of an element set, found " + quote_token(fields[0]));
   }
 
   static std::string to_upper(std::string_view s)

@@ -7,7 +7,8 @@
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_INP_H
 
 // Writer of Abaqus input files (.inp): *NODE, one *ELEMENT block of 8-node
-// hexahedra, the vertex sets as *NSET and the hexahedron sets as *ELSET.
+// hexahedra, the vertex sets as *NSET, the hexahedron sets as *ELSET and the
+// side sets as element-based *SURFACE.
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Id_map.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_INP.h>
@@ -78,6 +79,16 @@ bool write_INP_file(const std::string& fname, const Indexed_hex_mesh<Point>& mes
     for(const Named_index_set& s : mesh.hexahedron_sets)
       if(!s.indices.empty())
         write_inp_set(out, "ELSET", inp_set_name(s.name, ++n), s.indices, hex_ids);
+    // side sets as element-based surfaces; local faces (Exodus numbering) as
+    // the Abaqus faces of C3D8: 0 -> S3, 1 -> S4, 2 -> S5, 3 -> S6, 4 -> S1, 5 -> S2
+    static const char* const abaqus_face[6] = {"S3", "S4", "S5", "S6", "S1", "S2"};
+    for(const Named_side_set& s : mesh.side_sets)
+      if(!s.sides.empty())
+      {
+        out << "*SURFACE, NAME=" << inp_set_name(s.name, ++n) << ", TYPE=ELEMENT\n";
+        for(const auto& side : s.sides)
+          out << hex_ids[side.first] << ", " << abaqus_face[side.second] << '\n';
+      }
     return true;
   });
 }
