@@ -169,6 +169,19 @@ for name, options, kind in theirs:
             groups.append("NSET" if kind == "inp" else "node sets")
     rows.append((name, "-", "yes" if same else "differs", ", ".join(groups) or "-"))
 
+# an Exodus file with a block of boundary quadrangles before the hexahedra:
+# the block is skipped with a warning, the hexahedra keep their ids
+if have_exodus:
+    quads = np.array([h[[0, 3, 2, 1]] for h in hexes[:3]])
+    path = os.path.join(work, "meshio_mixed.exo")
+    meshio.write(path, meshio.Mesh(points, [("quad", quads), ("hexahedron", hexes)]))
+    r = dump(path)
+    if r is not None:
+        check(np.array_equal(np.array(r["hexahedra"]), hexes) and
+              [w for w in r["warnings"] if "skipped element block" in w and "QUAD4" in w] != [],
+              "meshio_mixed.exo: %d hexahedra, warnings %s" % (len(r["hexahedra"]), r["warnings"]))
+        rows.append(("meshio_mixed.exo", "-", "yes (QUAD4 block skipped)", "-"))
+
 # ------------------------------------------------------------ (c) gmsh opens ours
 gmsh = shutil.which("gmsh")
 gmsh_result = "skipped: gmsh is not installed (Debian gmsh)"

@@ -253,8 +253,11 @@ The block id of each hexahedron goes to `mesh.hexahedron_references` and
 the block names to `mesh.hexahedron_reference_names`; the node sets go to
 `mesh.vertex_sets`, the side sets to `mesh.side_sets` (Exodus face
 numbering, see `Named_side_set`), the node and element number maps to
-`mesh.point_ids` and `mesh.hexahedron_ids`. Blocks of other element types
-are an error, empty blocks are skipped. Needs a build with the Exodus II
+`mesh.point_ids` and `mesh.hexahedron_ids`. Blocks of surface, line and
+point elements (`QUAD`, `SHELL`, `TRI`, `BAR`, `BEAM`, `TRUSS`, `SPHERE`,
+...) are skipped with a warning each, and so are the sides of their
+elements in side sets; blocks of other volume elements (`TETRA`, `WEDGE`,
+`HEX20`, ...) are an error. Needs a build with the Exodus II
 library (`CGAL_HMO_HAVE_EXODUS`); without it the function fails with a
 message saying so. Parameters and result as for `read_MEDIT()`.
 */

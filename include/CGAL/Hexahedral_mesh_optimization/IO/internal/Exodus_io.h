@@ -101,11 +101,28 @@ inline bool netcdf_file_complete(int ncid, const std::string& fname, std::string
   return true;
 }
 
-inline bool exodus_hex_type(const char* type)
+/// the first word of an Exodus element type, in lower case
+inline std::string exodus_type_word(const char* type)
 {
   std::string t;
   for(const char* c = type; *c != '\0' && *c != ' '; ++c)
     t += to_lower_ascii(*c);
+  return t;
+}
+
+/// element types of lower dimension, whose blocks are skipped with a warning
+inline bool exodus_surface_type(const char* type)
+{
+  const std::string t = exodus_type_word(type);
+  for(const char* prefix : {"quad", "shell", "tri", "bar", "beam", "truss", "sphere", "circle", "edge", "nsided"})
+    if(t.compare(0, std::strlen(prefix), prefix) == 0)
+      return true;
+  return false;
+}
+
+inline bool exodus_hex_type(const char* type)
+{
+  const std::string t = exodus_type_word(type);
   return t == "hex" || t == "hex8" || t == "hexahedron";
 }
 
@@ -150,6 +167,11 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
   std::vector<int> ids(static_cast<std::size_t>(blocks));
   if(blocks > 0 && ex_get_ids(f.id, EX_ELEM_BLOCK, ids.data()) < 0)
     return ctx.fail(0, "cannot read the element block ids");
+  // Exodus numbers the elements of all blocks in turn: element g (0-based)
+  // is hexahedron hex_of[g], or none when its block was skipped
+  const std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> hex_of;
+  long long skipped = 0;
   for(int id : ids)
   {
     char type[MAX_STR_LENGTH + 1] = {0};
@@ -158,6 +180,14 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
       return ctx.fail(0, "element block " + std::to_string(id) + ": cannot read its parameters");
     if(n == 0)
       continue;
+    if(exodus_surface_type(type))
+    {
+      ctx.warn("skipped element block " + std::to_string(id) + " (" + std::to_string(n) + " elements of type " +
+               quote_token(type) + ")");
+      skipped += n;
+      hex_of.insert(hex_of.end(), static_cast<std::size_t>(n), none);
+      continue;
+    }
     if(!exodus_hex_type(type) || per != 8)
       return ctx.fail(0, "element block " + std::to_string(id) + ": " + std::to_string(n) + " elements of type " +
                            quote_token(type) + " with " + std::to_string(per) +
@@ -177,6 +207,7 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
                                (v == 0 ? ": truncated file?" : ""));
         h[k] = static_cast<std::size_t>(v - 1);
       }
+      hex_of.push_back(mesh.hexahedra.size());
       mesh.hexahedra.push_back(h);
       mesh.hexahedron_references.push_back(id);
     }
@@ -184,13 +215,14 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
     if(ex_get_name(f.id, EX_ELEM_BLOCK, id, name) >= 0 && name[0] != '\0')
       mesh.hexahedron_reference_names[id] = name;
   }
-  if(mesh.hexahedra.size() != static_cast<std::size_t>(elems))
+  if(mesh.hexahedra.size() + static_cast<std::size_t>(skipped) != static_cast<std::size_t>(elems))
     return ctx.fail(0, "the header announces " + std::to_string(elems) + " elements, the blocks hold " +
-                         std::to_string(mesh.hexahedra.size()));
+                         std::to_string(mesh.hexahedra.size() + static_cast<std::size_t>(skipped)));
+
   // id maps (absent maps read as 1..n)
   for(int element_map = 0; element_map < 2; ++element_map)
   {
-    std::vector<int> map(element_map ? mesh.hexahedra.size() : x.size());
+    std::vector<int> map(element_map ? hex_of.size() : x.size());
     if(map.empty() || ex_get_id_map(f.id, element_map ? EX_ELEM_MAP : EX_NODE_MAP, map.data()) < 0)
       continue;
     for(std::size_t i = 0; i < map.size(); ++i)
@@ -198,7 +230,15 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
         return ctx.fail(0, std::string(element_map ? "element" : "node") + " number map, entry " +
                              std::to_string(i + 1) + ": id " + std::to_string(map[i]) + " is not positive" +
                              (map[i] == 0 ? ": truncated file?" : ""));
-    (element_map ? mesh.hexahedron_ids : mesh.point_ids).assign(map.begin(), map.end());
+    if(!element_map)
+      mesh.point_ids.assign(map.begin(), map.end());
+    else
+    {
+      mesh.hexahedron_ids.assign(mesh.hexahedra.size(), 0);
+      for(std::size_t g = 0; g < hex_of.size(); ++g)
+        if(hex_of[g] != none)
+          mesh.hexahedron_ids[hex_of[g]] = map[g];
+    }
   }
   // node sets and side sets
   for(int side = 0; side < 2; ++side)
@@ -221,7 +261,7 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
       std::string set_name = (ex_get_name(f.id, kind, id, name) >= 0 && name[0] != '\0')
                                ? std::string(name)
                                : std::string(side ? "sideset_" : "nodeset_") + std::to_string(id);
-      const long long bound = side ? static_cast<long long>(mesh.hexahedra.size()) : nodes;
+      const long long bound = side ? static_cast<long long>(hex_of.size()) : nodes;
       for(std::size_t i = 0; i < entries.size(); ++i)
         if(entries[i] < 1 || entries[i] > bound || (side && (extra[i] < 1 || extra[i] > 6)))
           return ctx.fail(0, label + std::to_string(id) + ", entry " + std::to_string(i + 1) + ": " +
@@ -231,8 +271,18 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
       if(side)
       {
         Named_side_set s{set_name, {}};
+        std::size_t dropped = 0;
         for(std::size_t i = 0; i < entries.size(); ++i)
-          s.sides.push_back({static_cast<std::size_t>(entries[i] - 1), extra[i] - 1});
+        {
+          const std::size_t h = hex_of[static_cast<std::size_t>(entries[i] - 1)];
+          if(h == none)
+            ++dropped;
+          else
+            s.sides.push_back({h, extra[i] - 1});
+        }
+        if(dropped > 0)
+          ctx.warn(label + std::to_string(id) + ": " + std::to_string(dropped) +
+                   " sides of elements of skipped blocks dropped");
         mesh.side_sets.push_back(s);
       }
       else
