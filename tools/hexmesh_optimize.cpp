@@ -365,7 +365,7 @@ int main(int argc, char** argv)
       print_run_warnings(r, reference_warning);
 
       CGAL::IO::Hex_mesh_fields fields;
-      if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu"))
+      if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu") || ends_with(options.output, ".msh"))
         fields.cell_scalars.push_back({"scaled_jacobian", sj});
       if(!CGAL::IO::write_hex_mesh(options.output, mesh, fields, &io_error))
         return fail(io_error.what());

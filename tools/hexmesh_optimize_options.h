@@ -187,10 +187,11 @@ inline std::string usage()
   std::ostringstream s;
   s << "usage: hexmesh-optimize INPUT [OUTPUT] [options]\n"
        "\n"
-       "Reads a hexahedral mesh (MEDIT .mesh, VTK legacy .vtk, VTK XML .vtu), prints\n"
+       "Reads a hexahedral mesh (MEDIT .mesh, VTK legacy .vtk, VTK XML .vtu, gmsh .msh,\n"
+       "Abaqus .inp, Exodus II .exo/.e), prints\n"
        "its quality (hexahedra, vertices, inverted elements, minimum and average\n"
        "Verdict scaled Jacobian, histogram) and, when OUTPUT is given, writes the\n"
-       "optimised mesh there with the quality after (.vtk/.vtu outputs carry the\n"
+       "optimised mesh there with the quality after (.vtk/.vtu/.msh outputs carry the\n"
        "per-cell scaled Jacobian as the cell field \"scaled_jacobian\").\n"
        "\n"
        "options:\n";
@@ -219,8 +220,8 @@ inline std::string usage()
   return s.str();
 }
 
-/// whether `path` ends in .mesh, .vtk or .vtu (any case): the formats the
-/// writer knows
+/// whether `path` ends in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e (any
+/// case): the formats the writer knows
 inline bool has_mesh_extension(const std::string& path)
 {
   const std::size_t dot = path.find_last_of('.');
@@ -229,7 +230,7 @@ inline bool has_mesh_extension(const std::string& path)
   std::string ext = path.substr(dot + 1);
   for(char& c : ext)
     c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == "mesh" || ext == "vtk" || ext == "vtu";
+  return ext == "mesh" || ext == "vtk" || ext == "vtu" || ext == "msh" || ext == "inp" || ext == "exo" || ext == "e";
 }
 
 enum class Parse_result { run, help, error };
@@ -312,7 +313,7 @@ inline Parse_result parse_options(int argc, const char* const* argv, Hexmesh_opt
     // checked now rather than after a long optimisation
     if(!has_mesh_extension(options.output))
     {
-      error = "output '" + options.output + "' must end in .mesh, .vtk or .vtu";
+      error = "output '" + options.output + "' must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e";
       return Parse_result::error;
     }
   }

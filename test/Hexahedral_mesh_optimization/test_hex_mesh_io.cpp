@@ -812,10 +812,415 @@ void test_shared_data()
   }
 }
 
+// ----------------------------------------------------------------- simulation formats
+
+/// the 2x2x2 grid with what the simulation formats carry: references (block
+/// ids, physical tags) with names, vertex, hexahedron and side sets, ids;
+/// `sorted`: references in increasing order (Exodus writes block by block)
+Mesh simulation_mesh(bool sorted)
+{
+  Mesh m = grid_mesh(false);
+  m.hexahedron_references = sorted ? std::vector<int>{1, 1, 1, 1, 2, 2, 2, 7}
+                                   : std::vector<int>{2, 1, 2, 1, 7, 1, 1, 2};
+  m.hexahedron_reference_names = {{1, "steel"}, {2, "rubber core"}};
+  m.vertex_sets = {{"BOTTOM", {0, 1, 2, 3, 4, 5, 6, 7, 8}}, {"corner", {26}}};
+  m.hexahedron_sets = {{"LOWER", {0, 1, 2, 3}}, {"diag", {0, 7}}};
+  m.side_sets = {{"base", {{0, 4}, {1, 4}, {2, 4}, {3, 4}}}, {"lid", {{7, 5}}}};
+  for(std::size_t i = 0; i < m.points.size(); ++i)
+    m.point_ids.push_back(100 + 3 * static_cast<long long>(i));
+  for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+    m.hexahedron_ids.push_back(1000 - static_cast<long long>(h));
+  return m;
+}
+
+bool same_sets(const std::vector<CGAL::Named_index_set>& a, const std::vector<CGAL::Named_index_set>& b)
+{
+  if(a.size() != b.size())
+    return false;
+  for(std::size_t i = 0; i < a.size(); ++i)
+    if(a[i].name != b[i].name || a[i].indices != b[i].indices)
+      return false;
+  return true;
+}
+
+bool same_side_sets(const std::vector<CGAL::Named_side_set>& a, const std::vector<CGAL::Named_side_set>& b)
+{
+  if(a.size() != b.size())
+    return false;
+  for(std::size_t i = 0; i < a.size(); ++i)
+    if(a[i].name != b[i].name || a[i].sides != b[i].sides)
+      return false;
+  return true;
+}
+
+/// the mesh as JSON (exact doubles), for the tests of other readers (meshio)
+void dump_json(std::ostream& out, const Mesh& m, const std::vector<std::string>& warnings)
+{
+  out.precision(17);
+  const auto quoted = [](const std::string& s) {
+    std::string q = "\"";
+    for(char c : s)
+      q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    return q + "\"";
+  };
+  out << "{\n\"points\": [";
+  for(std::size_t i = 0; i < m.points.size(); ++i)
+    out << (i ? "," : "") << "[" << m.points[i].x() << "," << m.points[i].y() << "," << m.points[i].z() << "]";
+  out << "],\n\"hexahedra\": [";
+  for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+  {
+    out << (h ? "," : "") << "[";
+    for(std::size_t k = 0; k < 8; ++k)
+      out << (k ? "," : "") << m.hexahedra[h][k];
+    out << "]";
+  }
+  out << "],\n\"references\": [";
+  for(std::size_t h = 0; h < m.hexahedron_references.size(); ++h)
+    out << (h ? "," : "") << m.hexahedron_references[h];
+  out << "],\n\"reference_names\": {";
+  bool first = true;
+  for(const auto& n : m.hexahedron_reference_names)
+  {
+    out << (first ? "" : ",") << quoted(std::to_string(n.first)) << ":" << quoted(n.second);
+    first = false;
+  }
+  out << "}";
+  for(int hex = 0; hex < 2; ++hex)
+  {
+    out << ",\n\"" << (hex ? "hexahedron_sets" : "vertex_sets") << "\": {";
+    const auto& sets = hex ? m.hexahedron_sets : m.vertex_sets;
+    for(std::size_t i = 0; i < sets.size(); ++i)
+    {
+      out << (i ? "," : "") << quoted(sets[i].name) << ":[";
+      for(std::size_t j = 0; j < sets[i].indices.size(); ++j)
+        out << (j ? "," : "") << sets[i].indices[j];
+      out << "]";
+    }
+    out << "}";
+  }
+  out << ",\n\"side_sets\": {";
+  for(std::size_t i = 0; i < m.side_sets.size(); ++i)
+  {
+    out << (i ? "," : "") << quoted(m.side_sets[i].name) << ":[";
+    for(std::size_t j = 0; j < m.side_sets[i].sides.size(); ++j)
+      out << (j ? "," : "") << "[" << m.side_sets[i].sides[j].first << "," << m.side_sets[i].sides[j].second << "]";
+    out << "]";
+  }
+  out << "},\n\"warnings\": [";
+  for(std::size_t i = 0; i < warnings.size(); ++i)
+    out << (i ? "," : "") << quoted(warnings[i]);
+  out << "]\n}\n";
+}
+
+void test_simulation_round_trips()
+{
+  Hex_mesh_io_error err;
+  const Mesh m = simulation_mesh(false);
+  Hex_mesh_fields fields;
+  fields.cell_scalars.push_back({"scaled_jacobian", std::vector<double>(m.hexahedra.size(), 0.75)});
+
+  // gmsh: the 4 variants keep points, order, physical tags, names and tags
+  for(int variant = 0; variant < 4; ++variant)
+  {
+    const bool v4 = variant < 2, binary = variant % 2 == 1;
+    const std::string file = path(std::string("grid") + (v4 ? "41" : "22") + (binary ? "b" : "a") + ".msh");
+    HMO_CHECK(CGAL::IO::write_MSH(file, m, fields, &err,
+                                  v4 ? CGAL::IO::Gmsh_version::v4_1 : CGAL::IO::Gmsh_version::v2_2, binary));
+    const std::string text = read_text(file);
+    HMO_CHECK(contains(text, v4 ? "$MeshFormat\n4.1 " : "$MeshFormat\n2.2 "));
+    HMO_CHECK(contains(text, "$ElementData\n1\n\"scaled_jacobian\"\n"));
+    HMO_CHECK(contains(text, "3 2 \"rubber core\"\n"));
+    Mesh r;
+    std::vector<std::string> warnings;
+    const bool ok = CGAL::IO::read_hex_mesh(file, r, &err, &warnings);
+    if(!ok)
+      std::cerr << err.what() << std::endl;
+    HMO_CHECK(ok);
+    HMO_CHECK(same_volume(m, r));
+    HMO_CHECK(r.hexahedron_references == m.hexahedron_references);
+    HMO_CHECK(r.hexahedron_reference_names == m.hexahedron_reference_names);
+    HMO_CHECK(r.point_ids == m.point_ids && r.hexahedron_ids == m.hexahedron_ids);
+    HMO_CHECK(warnings.size() == 1 && contains(warnings[0], "skipped section $ElementData"));
+  }
+  // the default of write_hex_mesh: 4.1 ASCII
+  HMO_CHECK(CGAL::IO::write_hex_mesh(path("default.msh"), m, fields, &err));
+  HMO_CHECK(read_text(path("default.msh")) == read_text(path("grid41a.msh")));
+
+  // Abaqus: sets by name, ids, element type
+  {
+    Mesh a = m;
+    a.abaqus_element_type = "C3D8R";
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("grid.inp"), a, fields, &err));
+    Mesh r;
+    std::vector<std::string> warnings;
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("grid.inp"), r, &err, &warnings));
+    HMO_CHECK(same_volume(m, r));
+    HMO_CHECK(same_sets(r.vertex_sets, m.vertex_sets) && same_sets(r.hexahedron_sets, m.hexahedron_sets));
+    HMO_CHECK(same_side_sets(r.side_sets, m.side_sets));
+    HMO_CHECK(r.point_ids == m.point_ids && r.hexahedron_ids == m.hexahedron_ids);
+    HMO_CHECK(r.abaqus_element_type == "C3D8R");
+    HMO_CHECK(contains(read_text(path("grid.inp")), "*SURFACE, NAME=lid, TYPE=ELEMENT\n993, S2\n"));
+    HMO_CHECK(warnings.empty());
+    HMO_CHECK(contains(read_text(path("grid.inp")), "*ELEMENT, TYPE=C3D8R\n1000, 100, 103, 112, 109, 127, 130, 139, 136\n"));
+  }
+
+  // Exodus II: blocks, names, node sets, side sets, id maps
+  {
+    const Mesh e = simulation_mesh(true);
+    const bool written = CGAL::IO::write_hex_mesh(path("grid.exo"), e, fields, &err);
+    Mesh r;
+#ifdef CGAL_HMO_HAVE_EXODUS
+    HMO_CHECK(written);
+    std::vector<std::string> warnings;
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("grid.exo"), r, &err, &warnings));
+    HMO_CHECK(same_volume(e, r));
+    HMO_CHECK(r.hexahedron_references == e.hexahedron_references);
+    HMO_CHECK(r.hexahedron_reference_names == e.hexahedron_reference_names);
+    HMO_CHECK(same_sets(r.vertex_sets, e.vertex_sets) && same_side_sets(r.side_sets, e.side_sets));
+    HMO_CHECK(r.point_ids == e.point_ids && r.hexahedron_ids == e.hexahedron_ids);
+    // unsorted references: written block by block, the sets follow the hexahedra
+    HMO_CHECK(CGAL::IO::write_EXODUS(path("unsorted.e"), m, &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("unsorted.e"), r, &err));
+    HMO_CHECK(r.hexahedron_references == std::vector<int>({1, 1, 1, 1, 2, 2, 2, 7}));
+    HMO_CHECK(r.side_sets.size() == 2 && r.side_sets[1].sides.size() == 1 &&
+              r.hexahedra[r.side_sets[1].sides[0].first] == m.hexahedra[7]);
+    Mesh bad = e;
+    bad.hexahedron_references[0] = 0;
+    HMO_CHECK(!CGAL::IO::write_EXODUS(path("bad.exo"), bad, &err));
+    HMO_CHECK(contains(err.message, "element block ids must be positive") && !hmo_test::file_exists(path("bad.exo")));
+    // netCDF reads a file cut short as zeros, without an error: the reader
+    // checks the size against the variables and the indices against 0
+    const std::string exo = read_text(path("grid.exo"));
+    write_text(path("cut.exo"), exo.substr(0, exo.size() * 3 / 4));
+    expect_read_failure(path("cut.exo"), {"truncated file"});
+    Mesh big;  // 12^3 hexahedra: the data outweighs the header
+    const std::size_t n = 12;
+    const auto id = [n](std::size_t i, std::size_t j, std::size_t k) { return i + (n + 1) * (j + (n + 1) * k); };
+    for(std::size_t k = 0; k <= n; ++k)
+      for(std::size_t j = 0; j <= n; ++j)
+        for(std::size_t i = 0; i <= n; ++i)
+          big.points.push_back(Point(double(i), double(j), double(k)));
+    for(std::size_t k = 0; k < n; ++k)
+      for(std::size_t j = 0; j < n; ++j)
+        for(std::size_t i = 0; i < n; ++i)
+          big.hexahedra.push_back({{id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                    id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)}});
+    HMO_CHECK(CGAL::IO::write_EXODUS(path("big.exo"), big, &err));
+    const std::string big_exo = read_text(path("big.exo"));
+    write_text(path("big_cut.exo"), big_exo.substr(0, big_exo.size() / 2));
+    expect_read_failure(path("big_cut.exo"), {"truncated file: ", "bytes, its variables need at least"});
+    // a small cut, shorter than the header, leaves zeros in the last variables
+    write_text(path("big_cut2.exo"), big_exo.substr(0, big_exo.size() - 1000));
+    expect_read_failure(path("big_cut2.exo"), {"truncated file?"});
+    write_text(path("text.exo"), "not netcdf\n");
+    expect_read_failure(path("text.exo"), {"not an Exodus II (netCDF) file"});
+#else
+    HMO_CHECK(!written && contains(err.message, "this build has no Exodus II support"));
+    HMO_CHECK(!hmo_test::file_exists(path("grid.exo")));
+    expect_read_failure(path("grid.exo"), {"this build has no Exodus II support"});
+#endif
+  }
+  HMO_CHECK(files_containing(".tmp") == 0);
+}
+
+// a gmsh 2.2 file of one unit cube
+const std::string msh22_header = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+const std::string msh22_cube_nodes =
+  "$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n";
+
+void test_msh_errors()
+{
+  // accepted: other elements skipped with one warning per type, physical names, sections skipped
+  {
+    std::vector<std::string> warnings;
+    const Mesh m = expect_read_text(
+      "ok22.msh",
+      msh22_header + "$PhysicalNames\n2\n3 4 \"a b\"\n2 1 \"skin\"\n$EndPhysicalNames\n" + msh22_cube_nodes +
+        "$Elements\n5\n1 15 2 0 1 1\n2 3 2 1 1 1 2 3 4\n3 3 2 1 1 5 6 7 8\n4 5 2 4 1 1 2 3 4 5 6 7 8\n5 1 2 0 1 1 2\n"
+        "$EndElements\n$NodeData\n1\n\"t\"\n$EndNodeData\n",
+      &warnings);
+    HMO_CHECK(m.hexahedra.size() == 1 && m.hexahedron_references == std::vector<int>{4});
+    HMO_CHECK(m.hexahedron_reference_names.size() == 1 && m.hexahedron_reference_names.at(4) == "a b");
+    HMO_CHECK(warnings.size() == 4);
+    HMO_CHECK(warnings.size() == 4 && contains(warnings[1], "skipped 2 elements of type 3 (4-node quadrangle), the first element 2 (line 23)"));
+  }
+  expect_read_failure_text("v3.msh", "$MeshFormat\n3.0 0 8\n$EndMeshFormat\n", {"version '3.0' is not supported"}, 2);
+  expect_read_failure_text("ds4.msh", "$MeshFormat\n4.1 0 4\n$EndMeshFormat\n", {"data size 4 is not supported"}, 2);
+  expect_read_failure_text("nomf.msh", msh22_cube_nodes, {"does not start with $MeshFormat"}, 1);
+  expect_read_failure_text("tet.msh", msh22_header + msh22_cube_nodes + "$Elements\n1\n7 4 0 1 2 3 5\n$EndElements\n",
+                           {"element 7 (line 17) is a 4-node tetrahedron (type 4)", "only hexahedra"}, 17);
+  expect_read_failure_text("type.msh", msh22_header + msh22_cube_nodes + "$Elements\n1\n7 77 0 1 2 3 5\n$EndElements\n",
+                           {"unknown element type 77 (line 17)"}, 17);
+  expect_read_failure_text("node.msh", msh22_header + msh22_cube_nodes + "$Elements\n1\n7 5 0 1 2 3 4 5 6 7 9\n$EndElements\n",
+                           {"element 7 (line 17): node tag 9 is not in $Nodes"}, 17);
+  expect_read_failure_text("twice.msh", msh22_header + "$Nodes\n2\n1 0 0 0\n1 1 0 0\n$EndNodes\n",
+                           {"node tag 1 defined twice (line 7)"}, 7);
+  expect_read_failure_text("count.msh", msh22_header + msh22_cube_nodes + "$Elements\n2\n7 5 0 1 2 3 4 5 6 7 8\n$EndElements\n",
+                           {"$Elements: expected an element tag, found '$EndElements' (line 18)"}, 18);
+  expect_read_failure_text("repeat.msh", msh22_header + msh22_cube_nodes + "$Elements\n1\n7 5 0 1 2 3 4 5 6 7 1\n$EndElements\n",
+                           {"element 7 (line 17): vertex", "repeated"}, 17);
+  expect_read_failure_text("noelems.msh", msh22_header + msh22_cube_nodes, {"no $Elements section"});
+  expect_read_failure_text("trunc.msh", msh22_header + "$Nodes\n8\n1 0 0 0\n", {"file ends before $EndNodes"});
+  expect_read_failure_text("bad.msh", msh22_header + "$Nodes\n1\n1 0 x 0\n$EndNodes\n",
+                           {"$Nodes: expected a coordinate, found 'x' (line 6)"}, 6);
+
+  // binary: the endianness marker, truncated data
+  Mesh m = simulation_mesh(false);
+  Hex_mesh_io_error err;
+  HMO_CHECK(CGAL::IO::write_MSH(path("b.msh"), m, Hex_mesh_fields(), &err, CGAL::IO::Gmsh_version::v4_1, true));
+  const std::string binary = read_text(path("b.msh"));
+  const std::size_t marker = binary.find("4.1 1 8\n") + 8;
+  std::string swapped = binary;
+  std::swap(swapped[marker], swapped[marker + 3]);
+  expect_read_failure_text("swapped.msh", swapped, {"binary file of the other byte order"}, 3);
+  const std::size_t nodes = binary.find("$Nodes\n") + 7;
+  expect_read_failure_text("cut.msh", binary.substr(0, nodes + 100), {"$Nodes: file ends in the binary data", "(byte "});
+  HMO_CHECK(CGAL::IO::write_MSH(path("b22.msh"), m, Hex_mesh_fields(), &err, CGAL::IO::Gmsh_version::v2_2, true));
+  const std::string binary22 = read_text(path("b22.msh"));
+  expect_read_failure_text("cut22.msh", binary22.substr(0, binary22.size() - 40), {"file ends in the binary data"});
+}
+
+// an Abaqus file of one unit cube
+const std::string inp_cube_nodes =
+  "*Node\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n";
+
+void test_inp_errors()
+{
+  // accepted: comments, case, continuation lines, GENERATE, set names in sets, other types skipped
+  {
+    std::vector<std::string> warnings;
+    const Mesh m = expect_read_text(
+      "ok.inp",
+      "** a comment\n*Heading\n title\n" + inp_cube_nodes +
+        "*element, type=c3d8i, ELSET=Solid\n10, 1, 2, 3, 4,\n 5, 6, 7, 8\n"
+        "*ELEMENT, TYPE=S4R\n20, 1, 2, 3, 4\n21, 5, 6, 7, 8\n"
+        "*Nset, nset=low, generate\n1, 4, 1\n*NSET, NSET=top\n5, 6, 7, 8\n*Nset, nset=all\nlow, top\n"
+        "*Elset, elset=mixed\n10, 20\n*Material, name=steel\n*Elastic\n210e9, 0.3\n",
+      &warnings);
+    HMO_CHECK(m.hexahedra.size() == 1 && m.abaqus_element_type == "C3D8I");
+    HMO_CHECK(m.hexahedron_ids == std::vector<long long>{10});
+    HMO_CHECK(m.vertex_sets.size() == 3 && m.vertex_sets[2].name == "all" && m.vertex_sets[2].indices.size() == 8);
+    HMO_CHECK(m.vertex_sets[0].indices == std::vector<std::size_t>({0, 1, 2, 3}));
+    HMO_CHECK(m.hexahedron_sets.size() == 2 && m.hexahedron_sets[0].name == "Solid" &&
+              m.hexahedron_sets[1].indices == std::vector<std::size_t>{0});
+    bool skipped_s4r = false, dropped = false;
+    for(const std::string& w : warnings)
+    {
+      skipped_s4r = skipped_s4r || contains(w, "skipped 2 elements of type S4R (first line 16)");
+      dropped = dropped || contains(w, "*ELSET mixed: 1 members that are not hexahedra dropped");
+    }
+    HMO_CHECK(skipped_s4r && dropped);
+    HMO_CHECK(warnings.size() == 4);  // S4R, *MATERIAL, *ELASTIC, the dropped member
+  }
+  // element-based surfaces: the Abaqus faces S1..S6 of the unit cube are the
+  // documented local faces (Named_side_set) of the same geometric face
+  {
+    const Mesh m = expect_read_text("surface.inp", inp_cube_nodes +
+                                                     "*ELEMENT, TYPE=C3D8, ELSET=cube\n5, 1, 2, 3, 4, 5, 6, 7, 8\n"
+                                                     "*SURFACE, NAME=all\n5, S1\n5, S2\n5, S3\n5, S4\n5, S5\n"
+                                                     "*Surface, name=all, type=element\ncube, s6\n");
+    static const int face_vertices[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
+                                            {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+    // S1 z = 0, S2 z = 1, S3 y = 0, S4 x = 1, S5 y = 1, S6 x = 0
+    static const int axis[6] = {2, 2, 1, 0, 1, 0};
+    static const double value[6] = {0., 1., 0., 1., 1., 0.};
+    HMO_CHECK(m.side_sets.size() == 1 && m.side_sets[0].sides.size() == 6);
+    for(std::size_t s = 0; s < 6 && m.side_sets.size() == 1 && s < m.side_sets[0].sides.size(); ++s)
+    {
+      const auto side = m.side_sets[0].sides[s];
+      HMO_CHECK(side.first == 0);
+      for(int k = 0; k < 4; ++k)
+        HMO_CHECK(m.points[m.hexahedra[0][std::size_t(face_vertices[side.second][k])]][axis[s]] == value[s]);
+    }
+  }
+  expect_read_failure_text("face.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n5, 1, 2, 3, 4, 5, 6, 7, 8\n*SURFACE, NAME=s\n5, S7\n",
+                           {"*SURFACE (line 13): face 'S7' of an 8-node hexahedron must be S1..S6"}, 13);
+  expect_read_failure_text("nonode.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 9\n",
+                           {"element 1 (line 11): node 9 is not defined by *NODE"}, 11);
+  expect_read_failure_text("short.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7\n",
+                           {"*ELEMENT (line 11): incomplete record (8 of 9 values"}, 11);
+  expect_read_failure_text("long.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8, 9\n",
+                           {"10 values in a record"}, 11);
+  expect_read_failure_text("twod.inp", "*NODE\n1, 0.5, 2\n", {"*NODE (line 2): expected 'id, x, y, z', found 3 values"}, 2);
+  expect_read_failure_text("coord.inp", "*NODE\n1, 0.5, 2, zz\n", {"expected a coordinate, found 'zz'"}, 2);
+  expect_read_failure_text("dup.inp", "*NODE\n1, 0, 0, 0\n1, 0, 0, 1\n", {"node 1 defined twice"}, 3);
+  expect_read_failure_text("notype.inp", inp_cube_nodes + "*ELEMENT\n1, 1, 2, 3, 4, 5, 6, 7, 8\n",
+                           {"*ELEMENT (line 10): no TYPE= parameter"}, 10);
+  expect_read_failure_text("setmember.inp", inp_cube_nodes + "*NSET, NSET=a\n1, 99\n", {"*NSET (line 11): node 99 is not defined"}, 11);
+  expect_read_failure_text("setname.inp", inp_cube_nodes + "*NSET, NSET=a\nnosuchset\n",
+                           {"expected an id or the name of a set, found 'nosuchset'"}, 11);
+  expect_read_failure_text("data.inp", "1, 2, 3\n", {"data line before any keyword (line 1)"}, 1);
+  expect_read_failure_text("tet.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 5\n",
+                           {"no hexahedra (*ELEMENT of TYPE=C3D8"});
+  expect_read_failure_text("neg.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n-1, 1, 2, 3, 4, 5, 6, 7, 8\n",
+                           {"an element id -1 is not positive"}, 11);
+  expect_read_failure_text("flat.inp", inp_cube_nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 1\n",
+                           {"element 1 (line 11): vertex", "repeated"}, 11);
+}
+
+/// `--write-samples DIR`: the simulation meshes in every format we write, and
+/// what they hold (expected.json, expected_exodus.json); `--dump FILE`: the
+/// mesh read from FILE as JSON. Both for test_foreign_readers.py (meshio, gmsh).
+int sample_tool(int argc, char** argv)
+{
+  const std::string mode = argv[1];
+  if(mode == "--write-samples" && argc == 3)
+  {
+    const std::string dir = argv[2];
+    const Mesh m = simulation_mesh(false), e = simulation_mesh(true);
+    Hex_mesh_fields fields;
+    std::vector<double> ids;
+    for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+      ids.push_back(double(h));
+    fields.cell_scalars.push_back({"scaled_jacobian", ids});
+    // meshio (7.0) reads binary $ElementData (and 2.2 binary $Nodes) only
+    // when the tags are 1..n in order: the binary samples have no ids
+    Mesh no_ids = m;
+    no_ids.hexahedron_ids.clear();
+    no_ids.point_ids.clear();
+    Hex_mesh_io_error err;
+    bool ok = CGAL::IO::write_MSH(dir + "/ours_41_ascii.msh", m, fields, &err, CGAL::IO::Gmsh_version::v4_1, false) &&
+              CGAL::IO::write_MSH(dir + "/ours_41_binary.msh", no_ids, fields, &err, CGAL::IO::Gmsh_version::v4_1, true) &&
+              CGAL::IO::write_MSH(dir + "/ours_22_ascii.msh", m, fields, &err, CGAL::IO::Gmsh_version::v2_2, false) &&
+              CGAL::IO::write_MSH(dir + "/ours_22_binary.msh", no_ids, fields, &err, CGAL::IO::Gmsh_version::v2_2, true) &&
+              CGAL::IO::write_INP(dir + "/ours.inp", m, &err);
+#ifdef CGAL_HMO_HAVE_EXODUS
+    ok = ok && CGAL::IO::write_EXODUS(dir + "/ours.exo", e, &err);
+#endif
+    if(!ok)
+    {
+      std::cerr << err.what() << std::endl;
+      return 1;
+    }
+    std::ofstream out(dir + "/expected.json");
+    dump_json(out, m, {});
+    std::ofstream out_exodus(dir + "/expected_exodus.json");
+    dump_json(out_exodus, e, {});
+    return 0;
+  }
+  if(mode == "--dump" && argc == 3)
+  {
+    Mesh m;
+    Hex_mesh_io_error err;
+    std::vector<std::string> warnings;
+    if(!CGAL::IO::read_hex_mesh(argv[2], m, &err, &warnings))
+    {
+      std::cerr << err.what() << std::endl;
+      return 1;
+    }
+    dump_json(std::cout, m, warnings);
+    return 0;
+  }
+  std::cerr << "usage: test_hex_mesh_io [--write-samples DIR | --dump FILE]" << std::endl;
+  return 2;
+}
+
 } // namespace
 
-int main(int, char** argv)
+int main(int argc, char** argv)
 {
+  if(argc > 1)
+    return sample_tool(argc, argv);
   char templ[] = "/tmp/hmo_io_XXXXXX";
   if(::mkdtemp(templ) == nullptr)
   {
@@ -832,6 +1237,9 @@ int main(int, char** argv)
   test_vtk_binary_errors();
   test_vtu_errors();
   test_write_failures();
+  test_simulation_round_trips();
+  test_msh_errors();
+  test_inp_errors();
   test_shared_data();
 
   std::error_code ec;

@@ -54,7 +54,7 @@ check("option without its value exits 2 (got ${novalue_rc})" novalue_rc EQUAL 2)
 
 run(badext ${bunny} ${WORK}/out.txt)
 check("an unknown output format exits 2 (got ${badext_rc})" badext_rc EQUAL 2)
-check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk or .vtu")
+check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e")
 check("nothing written" NOT EXISTS ${WORK}/out.txt)
 
 run(three a.mesh b.mesh c.mesh)
@@ -398,6 +398,32 @@ if(EXISTS ${WORK}/limited.json)
 else()
   check("the time-limited run wrote its report" FALSE)
 endif()
+
+# ---------------------------------------------------- simulation formats
+# the groups of the simulation formats survive the tool: Abaqus sets, element
+# type and ids, gmsh physical groups and names (the tool writes the mesh it
+# read with new points)
+set(nodes "101, 0, 0, 0\n102, 1, 0, 0\n103, 1, 1, 0\n104, 0, 1, 0\n105, 0, 0, 1\n106, 1, 0, 1\n107, 1, 1, 1\n108, 0, 1, 1\n109, 2, 0, 0\n110, 2, 1, 0\n111, 2, 0, 1\n112, 2, 1, 1.2\n")
+file(WRITE ${WORK}/sets.inp "** two hexahedra\n*Node\n${nodes}*Element, type=C3D8R, elset=left\n7, 101, 102, 103, 104, 105, 106, 107, 108\n*ELEMENT, TYPE=C3D8R, ELSET=right\n9, 102, 109, 110, 103,\n106, 111, 112, 107\n*Nset, nset=fixed, generate\n101, 104\n*Elset, elset=all\nleft, right\n*Surface, name=ends\n7, S6\nright, S4\n")
+run(inp ${WORK}/sets.inp ${WORK}/sets_out.inp --quiet)
+check("the tool reads and writes Abaqus (rc ${inp_rc}: ${inp_err})" inp_rc EQUAL 0)
+file(READ ${WORK}/sets_out.inp inp_out)
+check("the element type and ids are kept" inp_out MATCHES "\\*ELEMENT, TYPE=C3D8R\n7, 101, 102, 103, 104, 105, 106, 107, 108\n9, 102, ")
+check("the node set is kept" inp_out MATCHES "\\*NSET, NSET=fixed\n101, 102, 103, 104\n")
+check("the element sets are kept" inp_out MATCHES "\\*ELSET, ELSET=left\n7\n\\*ELSET, ELSET=right\n9\n\\*ELSET, ELSET=all\n7, 9\n")
+check("the surface is kept" inp_out MATCHES "\\*SURFACE, NAME=ends, TYPE=ELEMENT\n7, S6\n9, S4\n")
+string(REPLACE ", " " " msh_nodes "${nodes}")
+file(WRITE ${WORK}/groups.msh "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 5 \"core\"\n3 6 \"shell\"\n$EndPhysicalNames\n$Nodes\n12\n${msh_nodes}$EndNodes\n$Elements\n3\n1 3 2 9 1 101 102 103 104\n7 5 2 5 1 101 102 103 104 105 106 107 108\n9 5 2 6 2 102 109 110 103 106 111 112 107\n$EndElements\n")
+run(msh ${WORK}/groups.msh ${WORK}/groups_out.msh --quiet)
+check("the tool reads and writes gmsh (rc ${msh_rc}: ${msh_err})" msh_rc EQUAL 0)
+check("the skipped quadrangle is reported once: ${msh_err}" msh_err MATCHES "^warning: skipped 1 elements of type 3 \\(4-node quadrangle\\)")
+file(READ ${WORK}/groups_out.msh msh_out)
+check("4.1 by default" msh_out MATCHES "^\\$MeshFormat\n4.1 0 8\n")
+check("the physical names are kept" msh_out MATCHES "\\$PhysicalNames\n2\n3 5 \"core\"\n3 6 \"shell\"\n")
+check("each hexahedron keeps its physical group" msh_out MATCHES "\n3 1 5 1\n7 101 [^\n]*\n3 2 5 1\n9 102 ")
+check("the scaled Jacobian is an element view" msh_out MATCHES "\\$ElementData\n1\n\"scaled_jacobian\"\n")
+run(msh_again ${WORK}/groups_out.msh ${WORK}/groups_out.inp --quiet)
+check("the tool reads its .msh output (rc ${msh_again_rc}: ${msh_again_err})" msh_again_rc EQUAL 0)
 
 # ---------------------------------------------------------- shared meshes
 if(EXISTS ${SHARED_DATA}/inverted/hex_torus.vtk)

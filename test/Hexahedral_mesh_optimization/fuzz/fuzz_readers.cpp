@@ -26,6 +26,8 @@
 #define HMO_FUZZ_VTU 3
 #define HMO_FUZZ_OBJ 4
 #define HMO_FUZZ_OFF 5
+#define HMO_FUZZ_MSH 6
+#define HMO_FUZZ_INP 7
 
 namespace {
 
@@ -39,6 +41,8 @@ const char* extension()
   case HMO_FUZZ_VTK: return ".vtk";
   case HMO_FUZZ_VTU: return ".vtu";
   case HMO_FUZZ_OBJ: return ".obj";
+  case HMO_FUZZ_MSH: return ".msh";
+  case HMO_FUZZ_INP: return ".inp";
   default: return ".off";
   }
 }

@@ -7,19 +7,25 @@
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H
 
 // Reading and writing `Indexed_hex_mesh` in the MEDIT (.mesh), legacy VTK
-// (.vtk) and VTK XML (.vtu) formats. Every reader validates the mesh it
+// (.vtk), VTK XML (.vtu), gmsh (.msh), Abaqus (.inp) and Exodus II (.exo,
+// .e; when the build has the Exodus library) formats. Every reader validates the mesh it
 // parsed (validate_hex_mesh.h) and names the offending record of the file;
 // every writer refuses an invalid mesh and replaces its target atomically.
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Read_context.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_INP.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_MEDIT.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_MSH.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_VTK.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_VTU.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_INP.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_MEDIT.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_MSH.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_VTK.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_VTU.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Exodus_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 
 #include <exception>
@@ -52,7 +58,7 @@ bool guarded_read(const std::string& fname, CGAL::IO::Hex_mesh_io_error* err,
   }
 }
 
-enum class Hex_mesh_format { medit, vtk, vtu, unknown };
+enum class Hex_mesh_format { medit, vtk, vtu, msh, inp, exodus, unknown };
 
 /// the format named by the extension of `fname` (case-insensitive); on
 /// failure `why` explains
@@ -62,7 +68,7 @@ inline Hex_mesh_format hex_mesh_format(const std::string& fname, std::string& wh
   const std::size_t dot = fname.find_last_of('.');
   if(dot == std::string::npos || (slash != std::string::npos && dot < slash))
   {
-    why = "no file extension: expected .mesh, .vtk or .vtu";
+    why = "no file extension: expected .mesh, .vtk, .vtu, .msh, .inp, .exo or .e";
     return Hex_mesh_format::unknown;
   }
   const std::string ext = to_lower(fname.substr(dot));
@@ -72,10 +78,16 @@ inline Hex_mesh_format hex_mesh_format(const std::string& fname, std::string& wh
     return Hex_mesh_format::vtk;
   if(ext == ".vtu")
     return Hex_mesh_format::vtu;
+  if(ext == ".msh")
+    return Hex_mesh_format::msh;
+  if(ext == ".inp")
+    return Hex_mesh_format::inp;
+  if(ext == ".exo" || ext == ".e")
+    return Hex_mesh_format::exodus;
   if(ext == ".meshb")
     why = "binary MEDIT files (.meshb) are not supported: convert to ASCII .mesh";
   else
-    why = "unknown file extension '" + fname.substr(dot) + "': expected .mesh, .vtk or .vtu";
+    why = "unknown file extension '" + fname.substr(dot) + "': expected .mesh, .vtk, .vtu, .msh, .inp, .exo or .e";
   return Hex_mesh_format::unknown;
 }
 
@@ -172,9 +184,100 @@ bool read_VTU(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
 /*!
 \ingroup PkgHexahedralMeshOptimizationIO
 
+\brief Reads a gmsh file (`.msh`), version 2.2 or 4.1, ASCII or binary.
+
+Hexahedra (element type 5, whose node order is the package's) are read with
+their element tags in `mesh.hexahedron_ids` and their physical tag (2.2: the
+first tag of the element; 4.1: the first physical tag of its volume entity
+in `$Entities`; 0 if none) in `mesh.hexahedron_references`; the names of
+`$PhysicalNames` of dimension 3 go to `mesh.hexahedron_reference_names`.
+Node tags are kept in `mesh.point_ids`. Points, lines, triangles and
+quadrangles are skipped with one warning per element type; other volume
+elements (tetrahedra, prisms, pyramids, high-order hexahedra) are an error.
+Other sections (`$NodeData`, `$ElementData`, `$Periodic`, ...) are skipped
+with a warning. A binary file must have been written on a machine of the
+same byte order (its endianness marker is checked) with data size 8
+(`sizeof(size_t)` and `sizeof(double)`), as gmsh writes them on every
+64-bit machine; other files are refused with a message saying so. Other
+versions (4.0, 3, 1) are refused: `gmsh -format msh41` converts.
+
+Parameters and result as for `read_MEDIT()`; elements and nodes are named by
+their tags in messages, with the line (ASCII) or byte (binary).
+*/
+template <class Point>
+bool read_MSH(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+              Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_MSH_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads an Abaqus input file (`.inp`) holding hexahedra.
+
+Read (keywords case-insensitive, `**` comments): `*NODE` (3 coordinates;
+`NSET=` puts the nodes in that set), `*ELEMENT` of an 8-node hexahedral
+type (`TYPE=C3D8`, `C3D8R`, `C3D8I`, `C3D8H`, `C3D8RH`, ...; records may continue on the next lines; `ELSET=` puts the
+elements in that set), `*NSET` and `*ELSET` (ids or names of sets already
+defined, or `GENERATE` ranges `first, last[, step]`) and element-based
+`*SURFACE` (lines `element or element set, S1..S6`, into `mesh.side_sets`
+with the faces renumbered as in `Named_side_set`). Elements of other types
+are skipped with one warning per type, and so are the members of sets that
+name them; other keywords (`*HEADING`, `*MATERIAL`, `*STEP`, ...) are skipped
+with one warning per keyword. Node and element ids are any positive integers,
+kept in `mesh.point_ids` and `mesh.hexahedron_ids`; the sets go to
+`mesh.vertex_sets` and `mesh.hexahedron_sets`, the element type to
+`mesh.abaqus_element_type`. Parameters and result as for `read_MEDIT()`.
+*/
+template <class Point>
+bool read_INP(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+              Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_INP_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Reads an Exodus II file (`.exo`, `.e`) whose element blocks are
+hexahedra (`HEX`, `HEX8`, `HEXAHEDRON`).
+
+The block id of each hexahedron goes to `mesh.hexahedron_references` and
+the block names to `mesh.hexahedron_reference_names`; the node sets go to
+`mesh.vertex_sets`, the side sets to `mesh.side_sets` (Exodus face
+numbering, see `Named_side_set`), the node and element number maps to
+`mesh.point_ids` and `mesh.hexahedron_ids`. Blocks of surface, line and
+point elements (`QUAD`, `SHELL`, `TRI`, `BAR`, `BEAM`, `TRUSS`, `SPHERE`,
+...) are skipped with a warning each, and so are the sides of their
+elements in side sets; blocks of other volume elements (`TETRA`, `WEDGE`,
+`HEX20`, ...) are an error. Needs a build with the Exodus II
+library (`CGAL_HMO_HAVE_EXODUS`); without it the function fails with a
+message saying so. Parameters and result as for `read_MEDIT()`.
+*/
+template <class Point>
+bool read_EXODUS(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
+                 Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_read(fname, err, warnings, [&](const io::Read_context& ctx) {
+    return io::read_EXODUS_file(fname, mesh, ctx);
+  });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
 \brief Reads a hexahedral mesh, choosing the reader by the extension of
-`fname` (case-insensitive): `.mesh` (`read_MEDIT()`), `.vtk` (`read_VTK()`)
-or `.vtu` (`read_VTU()`). Any other extension is an error.
+`fname` (case-insensitive): `.mesh` (`read_MEDIT()`), `.vtk` (`read_VTK()`),
+`.vtu` (`read_VTU()`), `.msh` (`read_MSH()`), `.inp` (`read_INP()`), `.exo`
+or `.e` (`read_EXODUS()`). Any other extension is an error.
 
 Parameters and result as for `read_MEDIT()`.
 */
@@ -189,6 +292,9 @@ bool read_hex_mesh(const std::string& fname, Indexed_hex_mesh<Point>& mesh,
   case io::Hex_mesh_format::medit: return read_MEDIT(fname, mesh, err, warnings);
   case io::Hex_mesh_format::vtk: return read_VTK(fname, mesh, err, warnings);
   case io::Hex_mesh_format::vtu: return read_VTU(fname, mesh, err, warnings);
+  case io::Hex_mesh_format::msh: return read_MSH(fname, mesh, err, warnings);
+  case io::Hex_mesh_format::inp: return read_INP(fname, mesh, err, warnings);
+  case io::Hex_mesh_format::exodus: return read_EXODUS(fname, mesh, err, warnings);
   default: return io::write_failure(fname, err, why);
   }
 }
@@ -272,10 +378,83 @@ bool write_VTU(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
 /*!
 \ingroup PkgHexahedralMeshOptimizationIO
 
+\brief Writes `mesh` as a gmsh file (`.msh`) of hexahedra (element type 5),
+with `fields.cell_scalars` as `$ElementData` views (gmsh colours the mesh by
+them; point fields are not written).
+
+Each distinct value of `mesh.hexahedron_references` becomes a volume entity
+whose physical tag is that value (none for values <= 0, which read back as
+0), named after `mesh.hexahedron_reference_names`; the hexahedra keep their
+order. Node and element tags are `mesh.point_ids` and `mesh.hexahedron_ids`
+when these are present, unique and positive (and, where the format stores
+them as 32-bit integers, small enough), 1..n otherwise. Binary files are
+written in the byte order of this machine with data size 8.
+
+\param fname the file to write
+\param mesh the mesh
+\param fields per-hexahedron scalar fields
+\param err if not null, receives the reason of a failure
+\param version `Gmsh_version::v4_1` (default) or `Gmsh_version::v2_2`
+\param binary `true` for the binary variant, `false` (default) for ASCII
+\return `true` on success
+*/
+template <class Point>
+bool write_MSH(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+               const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr,
+               Gmsh_version version = Gmsh_version::v4_1, bool binary = false)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_MSH_file(fname, mesh, fields, err, version, binary); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` as an Abaqus input file (`.inp`): `*NODE`, one
+`*ELEMENT` block of type `mesh.abaqus_element_type` (`C3D8` when empty), then
+`mesh.vertex_sets` as `*NSET`, `mesh.hexahedron_sets` as `*ELSET` and
+`mesh.side_sets` as element-based `*SURFACE` (one `id, Sn` line a side).
+`mesh.hexahedron_references` are not written (the format has no per-element
+integer); put such groups in `mesh.hexahedron_sets` to keep them. Ids are `mesh.point_ids` and `mesh.hexahedron_ids` when present, unique and
+positive, 1..n otherwise. Parameters and result as for `write_MEDIT()`.
+*/
+template <class Point>
+bool write_INP(const std::string& fname, const Indexed_hex_mesh<Point>& mesh, Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_INP_file(fname, mesh, err); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` as an Exodus II file (`.exo`, `.e`): one `HEX8`
+element block per distinct value of `mesh.hexahedron_references` (block id =
+the value, or 1 for a mesh without references; values <= 0 are refused),
+named after `mesh.hexahedron_reference_names`, the node sets
+`mesh.vertex_sets`, the side sets `mesh.side_sets`, and the id maps
+`mesh.point_ids` and `mesh.hexahedron_ids` when usable. The hexahedra are
+written block by block: a mesh whose references are not sorted reads back
+in another order. Needs a build with the Exodus II library; without it the
+function fails with a message saying so. Parameters and result as for
+`write_MEDIT()`.
+*/
+template <class Point>
+bool write_EXODUS(const std::string& fname, const Indexed_hex_mesh<Point>& mesh, Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  return io::guarded_write(fname, err, [&]() { return io::write_EXODUS_file(fname, mesh, err); });
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
 \brief Writes `mesh`, choosing the format by the extension of `fname`
 (case-insensitive): `.mesh` (`write_MEDIT()`; MEDIT has no place for
-`fields`, which are then ignored), `.vtk` (`write_VTK()`, ASCII) or `.vtu`
-(`write_VTU()`). Any other extension is an error and nothing is written.
+`fields`, which are then ignored), `.vtk` (`write_VTK()`, ASCII), `.vtu`
+(`write_VTU()`), `.msh` (`write_MSH()`, version 4.1 ASCII), `.inp`
+(`write_INP()`, fields ignored), `.exo` or `.e` (`write_EXODUS()`, fields
+ignored). Any other extension is an error and nothing is written.
 
 Parameters and result as for `write_VTK()`.
 */
@@ -290,6 +469,9 @@ bool write_hex_mesh(const std::string& fname, const Indexed_hex_mesh<Point>& mes
   case io::Hex_mesh_format::medit: return write_MEDIT(fname, mesh, err);
   case io::Hex_mesh_format::vtk: return write_VTK(fname, mesh, fields, err, false);
   case io::Hex_mesh_format::vtu: return write_VTU(fname, mesh, fields, err);
+  case io::Hex_mesh_format::msh: return write_MSH(fname, mesh, fields, err);
+  case io::Hex_mesh_format::inp: return write_INP(fname, mesh, err);
+  case io::Hex_mesh_format::exodus: return write_EXODUS(fname, mesh, err);
   default: return io::write_failure(fname, err, why);
   }
 }

@@ -74,6 +74,17 @@ struct Hex_mesh_fields
   bool empty() const { return cell_scalars.empty() && point_scalars.empty(); }
 };
 
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief The version of the gmsh `.msh` files that `write_MSH()` writes.
+*/
+enum class Gmsh_version
+{
+  v2_2, ///< the legacy format 2.2, still read by most solvers' converters
+  v4_1  ///< the current format 4.1 (default)
+};
+
 } // namespace IO
 } // namespace CGAL
 

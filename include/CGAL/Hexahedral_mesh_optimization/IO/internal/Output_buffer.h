@@ -68,6 +68,17 @@ public:
     put_big_endian(u, 8);
   }
 
+  /// the bytes of `v` in the byte order of this machine (binary gmsh files,
+  /// whose endianness marker tells the reader)
+  template <class T>
+  void native(const T& v)
+  {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    buffer_.append(bytes, sizeof(T));
+    spill();
+  }
+
   /// hands the rest to the file; false if any write failed
   bool flush()
   {

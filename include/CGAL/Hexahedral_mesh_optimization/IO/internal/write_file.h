@@ -61,6 +61,28 @@ bool check_before_writing(const std::string& fname, const Indexed_hex_mesh<Point
   Hex_mesh_defect d;
   if(!validate_hex_mesh(mesh, d))
     return write_failure(fname, err, "refusing to write an invalid mesh: " + d.what());
+  // the sets of the simulation formats must index existing elements
+  for(int hex_set = 0; hex_set < 2; ++hex_set)
+  {
+    const std::size_t bound = hex_set ? mesh.hexahedra.size() : mesh.points.size();
+    for(const Named_index_set& s : hex_set ? mesh.hexahedron_sets : mesh.vertex_sets)
+      for(std::size_t i : s.indices)
+        if(i >= bound)
+          return write_failure(fname, err, std::string(hex_set ? "hexahedron" : "vertex") + " set '" + s.name +
+                                             "': index " + std::to_string(i) + " out of range (mesh has " +
+                                             std::to_string(bound) + (hex_set ? " hexahedra)" : " vertices)"));
+  }
+  for(const Named_side_set& s : mesh.side_sets)
+    for(const auto& side : s.sides)
+      if(side.first >= mesh.hexahedra.size() || side.second < 0 || side.second > 5)
+        return write_failure(fname, err, "side set '" + s.name + "': side (" + std::to_string(side.first) + ", " +
+                                           std::to_string(side.second) + ") out of range");
+  if(!mesh.point_ids.empty() && mesh.point_ids.size() != mesh.points.size())
+    return write_failure(fname, err, std::to_string(mesh.point_ids.size()) + " point ids for " +
+                                       std::to_string(mesh.points.size()) + " vertices");
+  if(!mesh.hexahedron_ids.empty() && mesh.hexahedron_ids.size() != mesh.hexahedra.size())
+    return write_failure(fname, err, std::to_string(mesh.hexahedron_ids.size()) + " hexahedron ids for " +
+                                       std::to_string(mesh.hexahedra.size()) + " hexahedra");
   for(int point_field = 0; point_field < 2; ++point_field)
   {
     const auto& list = point_field ? fields.point_scalars : fields.cell_scalars;

@@ -1,0 +1,452 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_EXODUS_IO_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_EXODUS_IO_H
+
+// Exodus II (.exo, .e) reading and writing. Exodus files are netCDF files:
+// they are read and written through the Exodus II C library (Debian
+// libexodusii-dev), found by CMake, which then defines CGAL_HMO_HAVE_EXODUS.
+// Without it both functions fail with a message saying so.
+
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Read_context.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
+#include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Id_map.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Text_scanner.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Kernel_traits.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#ifdef CGAL_HMO_HAVE_EXODUS
+#include <exodusII.h>
+#include <netcdf.h>
+#include <unistd.h>
+#endif
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+namespace io {
+
+#ifdef CGAL_HMO_HAVE_EXODUS
+
+/// an open Exodus file, closed at the end of the scope
+struct Exodus_file
+{
+  int id = -1;
+  ~Exodus_file()
+  {
+    if(id >= 0)
+      ex_close(id);
+  }
+};
+
+/// A classic netCDF file cut short reads as zeros past its end, without an
+/// error (measured with libnetcdf 4.9 and libexodusii 6.02): the file must
+/// be at least as long as its variables. (netCDF-4 files are HDF5 files,
+/// which detect truncation themselves, and may be compressed.)
+inline bool netcdf_file_complete(int ncid, const std::string& fname, std::string& why)
+{
+  int format = 0;
+  if(nc_inq_format(ncid, &format) != NC_NOERR)
+    return true;
+  if(format != NC_FORMAT_CLASSIC && format != NC_FORMAT_64BIT_OFFSET && format != NC_FORMAT_CDF5)
+    return true;
+  int variables = 0;
+  if(nc_inq_nvars(ncid, &variables) != NC_NOERR)
+    return true;
+  unsigned long long needed = 0;
+  for(int v = 0; v < variables; ++v)
+  {
+    nc_type type;
+    int dimensions = 0;
+    int ids[NC_MAX_VAR_DIMS];
+    if(nc_inq_var(ncid, v, nullptr, &type, &dimensions, ids, nullptr) != NC_NOERR)
+      return true;
+    std::size_t type_size = 0;
+    if(nc_inq_type(ncid, type, nullptr, &type_size) != NC_NOERR)
+      return true;
+    unsigned long long n = type_size;
+    for(int d = 0; d < dimensions; ++d)
+    {
+      std::size_t length = 0;
+      if(nc_inq_dimlen(ncid, ids[d], &length) != NC_NOERR)
+        return true;
+      n *= length;
+    }
+    needed += n;
+  }
+  std::FILE* file = std::fopen(fname.c_str(), "rb");
+  if(file == nullptr)
+    return true;
+  std::fseek(file, 0, SEEK_END);
+  const long size = std::ftell(file);
+  std::fclose(file);
+  if(size >= 0 && static_cast<unsigned long long>(size) < needed)
+  {
+    why = "truncated file: " + std::to_string(size) + " bytes, its variables need at least " + std::to_string(needed);
+    return false;
+  }
+  return true;
+}
+
+/// the first word of an Exodus element type, in lower case
+inline std::string exodus_type_word(const char* type)
+{
+  std::string t;
+  for(const char* c = type; *c != '\0' && *c != ' '; ++c)
+    t += to_lower_ascii(*c);
+  return t;
+}
+
+/// element types of lower dimension, whose blocks are skipped with a warning
+inline bool exodus_surface_type(const char* type)
+{
+  const std::string t = exodus_type_word(type);
+  for(const char* prefix : {"quad", "shell", "tri", "bar", "beam", "truss", "sphere", "circle", "edge", "nsided"})
+    if(t.compare(0, std::strlen(prefix), prefix) == 0)
+      return true;
+  return false;
+}
+
+inline bool exodus_hex_type(const char* type)
+{
+  const std::string t = exodus_type_word(type);
+  return t == "hex" || t == "hex8" || t == "hexahedron";
+}
+
+template <class Point>
+bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, const Read_context& ctx)
+{
+  typedef typename Kernel_traits<Point>::Kernel Kernel;
+  const Kernel gt;
+  ex_opts(0);  // no messages on stderr: the errors come back as values
+  int comp_ws = 8, io_ws = 0;
+  float version = 0.f;
+  Exodus_file f;
+  {
+    std::FILE* probe = std::fopen(fname.c_str(), "rb");
+    if(probe == nullptr)
+      return ctx.fail(0, std::string("cannot open: ") + std::strerror(errno));
+    std::fclose(probe);
+  }
+  f.id = ex_open(fname.c_str(), EX_READ, &comp_ws, &io_ws, &version);
+  if(f.id < 0)
+    return ctx.fail(0, "not an Exodus II (netCDF) file, or a damaged one");
+  ex_set_max_name_length(f.id, 255);
+  std::string why;
+  if(!netcdf_file_complete(f.id, fname, why))
+    return ctx.fail(0, why);
+  char title[MAX_LINE_LENGTH + 1] = {0};
+  int dim = 0, nodes = 0, elems = 0, blocks = 0, node_sets = 0, side_sets = 0;
+  if(ex_get_init(f.id, title, &dim, &nodes, &elems, &blocks, &node_sets, &side_sets) < 0)
+    return ctx.fail(0, "cannot read the Exodus header (ex_get_init)");
+  if(dim != 3)
+    return ctx.fail(0, "dimension " + std::to_string(dim) + ": only 3-dimensional meshes are supported");
+  if(nodes < 0 || elems < 0 || blocks < 0 || node_sets < 0 || side_sets < 0)
+    return ctx.fail(0, "negative counts in the Exodus header");
+  Indexed_hex_mesh<Point> mesh;
+  std::vector<double> x(static_cast<std::size_t>(nodes)), y(x.size()), z(x.size());
+  if(nodes > 0 && ex_get_coord(f.id, x.data(), y.data(), z.data()) < 0)
+    return ctx.fail(0, "cannot read the coordinates (ex_get_coord)");
+  for(std::size_t i = 0; i < x.size(); ++i)
+    mesh.points.push_back(to_point(Vec3{{x[i], y[i], z[i]}}, gt));
+  char name[256];
+  // element blocks
+  std::vector<int> ids(static_cast<std::size_t>(blocks));
+  if(blocks > 0 && ex_get_ids(f.id, EX_ELEM_BLOCK, ids.data()) < 0)
+    return ctx.fail(0, "cannot read the element block ids");
+  // Exodus numbers the elements of all blocks in turn: element g (0-based)
+  // is hexahedron hex_of[g], or none when its block was skipped
+  const std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> hex_of;
+  long long skipped = 0;
+  for(int id : ids)
+  {
+    char type[MAX_STR_LENGTH + 1] = {0};
+    int n = 0, per = 0, edges = 0, faces = 0, attributes = 0;
+    if(ex_get_block(f.id, EX_ELEM_BLOCK, id, type, &n, &per, &edges, &faces, &attributes) < 0)
+      return ctx.fail(0, "element block " + std::to_string(id) + ": cannot read its parameters");
+    if(n == 0)
+      continue;
+    if(exodus_surface_type(type))
+    {
+      ctx.warn("skipped element block " + std::to_string(id) + " (" + std::to_string(n) + " elements of type " +
+               quote_token(type) + ")");
+      skipped += n;
+      hex_of.insert(hex_of.end(), static_cast<std::size_t>(n), none);
+      continue;
+    }
+    if(!exodus_hex_type(type) || per != 8)
+      return ctx.fail(0, "element block " + std::to_string(id) + ": " + std::to_string(n) + " elements of type " +
+                           quote_token(type) + " with " + std::to_string(per) +
+                           " nodes: only hexahedra (HEX8) are supported");
+    std::vector<int> conn(static_cast<std::size_t>(n) * 8);
+    if(ex_get_conn(f.id, EX_ELEM_BLOCK, id, conn.data(), nullptr, nullptr) < 0)
+      return ctx.fail(0, "element block " + std::to_string(id) + ": cannot read its connectivity");
+    for(std::size_t e = 0; e < static_cast<std::size_t>(n); ++e)
+    {
+      typename Indexed_hex_mesh<Point>::Hexahedron h;
+      for(std::size_t k = 0; k < 8; ++k)
+      {
+        const int v = conn[8 * e + k];
+        if(v < 1 || v > nodes)
+          return ctx.fail(0, "element block " + std::to_string(id) + ", element " + std::to_string(e + 1) +
+                               ": node " + std::to_string(v) + " out of range (1.." + std::to_string(nodes) + ")" +
+                               (v == 0 ? ": truncated file?" : ""));
+        h[k] = static_cast<std::size_t>(v - 1);
+      }
+      hex_of.push_back(mesh.hexahedra.size());
+      mesh.hexahedra.push_back(h);
+      mesh.hexahedron_references.push_back(id);
+    }
+    name[0] = '\0';
+    if(ex_get_name(f.id, EX_ELEM_BLOCK, id, name) >= 0 && name[0] != '\0')
+      mesh.hexahedron_reference_names[id] = name;
+  }
+  if(mesh.hexahedra.size() + static_cast<std::size_t>(skipped) != static_cast<std::size_t>(elems))
+    return ctx.fail(0, "the header announces " + std::to_string(elems) + " elements, the blocks hold " +
+                         std::to_string(mesh.hexahedra.size() + static_cast<std::size_t>(skipped)));
+
+  // id maps (absent maps read as 1..n)
+  for(int element_map = 0; element_map < 2; ++element_map)
+  {
+    std::vector<int> map(element_map ? hex_of.size() : x.size());
+    if(map.empty() || ex_get_id_map(f.id, element_map ? EX_ELEM_MAP : EX_NODE_MAP, map.data()) < 0)
+      continue;
+    for(std::size_t i = 0; i < map.size(); ++i)
+      if(map[i] <= 0)
+        return ctx.fail(0, std::string(element_map ? "element" : "node") + " number map, entry " +
+                             std::to_string(i + 1) + ": id " + std::to_string(map[i]) + " is not positive" +
+                             (map[i] == 0 ? ": truncated file?" : ""));
+    if(!element_map)
+      mesh.point_ids.assign(map.begin(), map.end());
+    else
+    {
+      mesh.hexahedron_ids.assign(mesh.hexahedra.size(), 0);
+      for(std::size_t g = 0; g < hex_of.size(); ++g)
+        if(hex_of[g] != none)
+          mesh.hexahedron_ids[hex_of[g]] = map[g];
+    }
+  }
+  // node sets and side sets
+  for(int side = 0; side < 2; ++side)
+  {
+    const ex_entity_type kind = side ? EX_SIDE_SET : EX_NODE_SET;
+    const int count = side ? side_sets : node_sets;
+    const char* label = side ? "side set " : "node set ";
+    std::vector<int> set_ids(static_cast<std::size_t>(count));
+    if(count > 0 && ex_get_ids(f.id, kind, set_ids.data()) < 0)
+      return ctx.fail(0, std::string("cannot read the ") + label + "ids");
+    for(int id : set_ids)
+    {
+      int n = 0, factors = 0;
+      if(ex_get_set_param(f.id, kind, id, &n, &factors) < 0 || n < 0)
+        return ctx.fail(0, label + std::to_string(id) + ": cannot read its parameters");
+      std::vector<int> entries(static_cast<std::size_t>(n)), extra(side ? entries.size() : 0);
+      if(n > 0 && ex_get_set(f.id, kind, id, entries.data(), side ? extra.data() : nullptr) < 0)
+        return ctx.fail(0, label + std::to_string(id) + ": cannot read its entries");
+      name[0] = '\0';
+      std::string set_name = (ex_get_name(f.id, kind, id, name) >= 0 && name[0] != '\0')
+                               ? std::string(name)
+                               : std::string(side ? "sideset_" : "nodeset_") + std::to_string(id);
+      const long long bound = side ? static_cast<long long>(hex_of.size()) : nodes;
+      for(std::size_t i = 0; i < entries.size(); ++i)
+        if(entries[i] < 1 || entries[i] > bound || (side && (extra[i] < 1 || extra[i] > 6)))
+          return ctx.fail(0, label + std::to_string(id) + ", entry " + std::to_string(i + 1) + ": " +
+                               (side ? "element " : "node ") + std::to_string(entries[i]) +
+                               (side ? ", side " + std::to_string(extra[i]) : std::string()) + " out of range" +
+                               (entries[i] == 0 ? ": truncated file?" : ""));
+      if(side)
+      {
+        Named_side_set s{set_name, {}};
+        std::size_t dropped = 0;
+        for(std::size_t i = 0; i < entries.size(); ++i)
+        {
+          const std::size_t h = hex_of[static_cast<std::size_t>(entries[i] - 1)];
+          if(h == none)
+            ++dropped;
+          else
+            s.sides.push_back({h, extra[i] - 1});
+        }
+        if(dropped > 0)
+          ctx.warn(label + std::to_string(id) + ": " + std::to_string(dropped) +
+                   " sides of elements of skipped blocks dropped");
+        mesh.side_sets.push_back(s);
+      }
+      else
+      {
+        Named_index_set s{set_name, {}};
+        for(int v : entries)
+          s.indices.push_back(static_cast<std::size_t>(v - 1));
+        mesh.vertex_sets.push_back(s);
+      }
+    }
+  }
+  return finish_read(mesh, out, ctx, 1, 1, [](Hex_mesh_defect::Section s, std::size_t record, std::size_t& line) {
+    line = 0;
+    return std::string(s == Hex_mesh_defect::VERTICES ? "node " : "element ") + std::to_string(record + 1);
+  });
+}
+
+template <class Point>
+bool write_EXODUS_file(const std::string& fname, const Indexed_hex_mesh<Point>& mesh, CGAL::IO::Hex_mesh_io_error* err)
+{
+  if(!check_before_writing(fname, mesh, CGAL::IO::Hex_mesh_fields(), err))
+    return false;
+  for(int r : mesh.hexahedron_references)
+    if(r <= 0)
+      return write_failure(fname, err, "hexahedron reference " + std::to_string(r) +
+                                         ": Exodus II element block ids must be positive");
+  for(const std::vector<long long>* ids : {&mesh.point_ids, &mesh.hexahedron_ids})
+    for(long long i : *ids)
+      if(i > INT_MAX)
+        return write_failure(fname, err, "id " + std::to_string(i) + " does not fit the 32-bit ids of this writer");
+  typedef typename Kernel_traits<Point>::Kernel Kernel;
+  const Kernel gt;
+  // the hexahedra grouped by block, in the order of the block ids
+  std::map<int, std::vector<std::size_t> > blocks;
+  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+    blocks[mesh.hexahedron_references.empty() ? 1 : mesh.hexahedron_references[h]].push_back(h);
+  std::vector<std::size_t> new_position(mesh.hexahedra.size());
+  std::size_t next = 0;
+  for(const auto& b : blocks)
+    for(std::size_t h : b.second)
+      new_position[h] = next++;
+
+  // netCDF writes the file by name: a temporary name in the same folder,
+  // renamed at the end, removed on failure
+  const std::string temp = fname + ".tmp" + std::to_string(::getpid());
+  struct Remove_on_failure
+  {
+    const std::string& name;
+    bool keep = false;
+    ~Remove_on_failure()
+    {
+      if(!keep)
+        std::remove(name.c_str());
+    }
+  } cleanup{temp};
+  ex_opts(0);
+  int comp_ws = 8, io_ws = 8;
+  Exodus_file f;
+  f.id = ex_create(temp.c_str(), EX_CLOBBER, &comp_ws, &io_ws);
+  if(f.id < 0)
+    return write_failure(fname, err, "cannot create the file (ex_create)");
+  ex_set_max_name_length(f.id, 80);
+  const auto failed = [&](const char* what) { return write_failure(fname, err, std::string("cannot write ") + what); };
+  if(ex_put_init(f.id, "hexahedral mesh written by CGAL Hexahedral_mesh_optimization", 3,
+                 static_cast<int64_t>(mesh.points.size()), static_cast<int64_t>(mesh.hexahedra.size()),
+                 static_cast<int64_t>(blocks.size()), static_cast<int64_t>(mesh.vertex_sets.size()),
+                 static_cast<int64_t>(mesh.side_sets.size())) < 0)
+    return failed("the header");
+  std::vector<double> x, y, z;
+  for(const Point& q : mesh.points)
+  {
+    const Vec3 p = to_vec3(q, gt);
+    x.push_back(p[0]);
+    y.push_back(p[1]);
+    z.push_back(p[2]);
+  }
+  const char* axes[] = {"x", "y", "z"};
+  if(ex_put_coord(f.id, x.data(), y.data(), z.data()) < 0 || ex_put_coord_names(f.id, const_cast<char**>(axes)) < 0)
+    return failed("the coordinates");
+  for(const auto& b : blocks)
+  {
+    std::vector<int> conn;
+    for(std::size_t h : b.second)
+      for(std::size_t v : mesh.hexahedra[h])
+        conn.push_back(static_cast<int>(v + 1));
+    if(ex_put_block(f.id, EX_ELEM_BLOCK, b.first, "HEX8", static_cast<int64_t>(b.second.size()), 8, 0, 0, 0) < 0 ||
+       ex_put_conn(f.id, EX_ELEM_BLOCK, b.first, conn.data(), nullptr, nullptr) < 0)
+      return failed("an element block");
+    const auto name = mesh.hexahedron_reference_names.find(b.first);
+    if(name != mesh.hexahedron_reference_names.end() && ex_put_name(f.id, EX_ELEM_BLOCK, b.first, name->second.c_str()) < 0)
+      return failed("a block name");
+  }
+  const std::vector<long long> node_ids = ids_for_writing(mesh.point_ids, mesh.points.size());
+  const std::vector<long long> hex_ids = ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
+  std::vector<int> map(node_ids.begin(), node_ids.end());
+  if(ex_put_id_map(f.id, EX_NODE_MAP, map.data()) < 0)
+    return failed("the node map");
+  map.assign(hex_ids.size(), 0);
+  for(std::size_t h = 0; h < hex_ids.size(); ++h)
+    map[new_position[h]] = static_cast<int>(hex_ids[h]);
+  if(ex_put_id_map(f.id, EX_ELEM_MAP, map.data()) < 0)
+    return failed("the element map");
+  int set_id = 0;
+  for(const Named_index_set& s : mesh.vertex_sets)
+  {
+    ++set_id;
+    std::vector<int> entries;
+    for(std::size_t v : s.indices)
+      entries.push_back(static_cast<int>(v + 1));
+    if(ex_put_set_param(f.id, EX_NODE_SET, set_id, static_cast<int64_t>(entries.size()), 0) < 0 ||
+       (!entries.empty() && ex_put_set(f.id, EX_NODE_SET, set_id, entries.data(), nullptr) < 0) ||
+       ex_put_name(f.id, EX_NODE_SET, set_id, s.name.c_str()) < 0)
+      return failed("a node set");
+  }
+  set_id = 0;
+  for(const Named_side_set& s : mesh.side_sets)
+  {
+    ++set_id;
+    std::vector<int> elements, sides;
+    for(const auto& side : s.sides)
+    {
+      elements.push_back(static_cast<int>(new_position[side.first] + 1));
+      sides.push_back(side.second + 1);
+    }
+    if(ex_put_set_param(f.id, EX_SIDE_SET, set_id, static_cast<int64_t>(elements.size()), 0) < 0 ||
+       (!elements.empty() && ex_put_set(f.id, EX_SIDE_SET, set_id, elements.data(), sides.data()) < 0) ||
+       ex_put_name(f.id, EX_SIDE_SET, set_id, s.name.c_str()) < 0)
+      return failed("a side set");
+  }
+  const int id = f.id;
+  f.id = -1;
+  if(ex_close(id) < 0)
+    return failed("the file (ex_close)");
+  if(std::rename(temp.c_str(), fname.c_str()) != 0)
+    return write_failure(fname, err, std::string("cannot rename the temporary file: ") + std::strerror(errno));
+  cleanup.keep = true;
+  return true;
+}
+
+#else // CGAL_HMO_HAVE_EXODUS
+
+inline const char* no_exodus_support()
+{
+  return "this build has no Exodus II support (the Exodus II library, Debian libexodusii-dev, was not found "
+         "when it was configured): convert the mesh to .msh, .inp, .mesh or .vtu";
+}
+
+template <class Point>
+bool read_EXODUS_file(const std::string&, Indexed_hex_mesh<Point>&, const Read_context& ctx)
+{
+  return ctx.fail(0, no_exodus_support());
+}
+
+template <class Point>
+bool write_EXODUS_file(const std::string& fname, const Indexed_hex_mesh<Point>&, CGAL::IO::Hex_mesh_io_error* err)
+{
+  return write_failure(fname, err, no_exodus_support());
+}
+
+#endif // CGAL_HMO_HAVE_EXODUS
+
+} // namespace io
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_EXODUS_IO_H
