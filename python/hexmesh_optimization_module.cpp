@@ -174,7 +174,8 @@ py::tuple read_mesh(const py::object& path)
   return py::make_tuple(points_array(mesh), hexes_array(mesh));
 }
 
-void write_mesh(const py::object& path, const py::array& points, const py::array& hexes, const py::object& cell_data)
+void write_mesh(const py::object& path, const py::array& points, const py::array& hexes, const py::object& cell_data,
+                const py::object& format)
 {
   const std::string fname = path_string(path);
   const Mesh mesh = mesh_from_arrays(points, hexes);
@@ -191,12 +192,27 @@ void write_mesh(const py::object& path, const py::array& points, const py::array
       fields.cell_scalars.push_back({name, std::vector<double>(values.data(), values.data() + values.shape(0))});
     }
   }
-  std::string why;
-  if(HMO::internal::io::hex_mesh_format(fname, why) == HMO::internal::io::Hex_mesh_format::unknown)
-    raise(PyExc_ValueError, fname + ": " + why);
   CGAL::IO::Hex_mesh_io_error error;
-  if(!CGAL::IO::write_hex_mesh(fname, mesh, fields, &error))
-    raise(PyExc_OSError, error.what()); // the mesh and the extension were checked: the file system refused
+  bool written = false;
+  if(!format.is_none())
+  {
+    const std::string name = py::isinstance<py::str>(format) ? std::string(py::str(format)) : std::string();
+    CGAL::IO::Hex_mesh_file_format f;
+    if(!CGAL::IO::parse_hex_mesh_file_format(name, f))
+      raise(PyExc_ValueError, "format: unknown format " + std::string(py::repr(format)) +
+                                " (expected mesh, vtk, vtk-binary, vtu, msh, msh41, msh41-binary, msh22, "
+                                "msh22-binary, inp or exo)");
+    written = CGAL::IO::write_hex_mesh_as(f, fname, mesh, fields, &error);
+  }
+  else
+  {
+    std::string why;
+    if(HMO::internal::io::hex_mesh_format(fname, why) == HMO::internal::io::Hex_mesh_format::unknown)
+      raise(PyExc_ValueError, fname + ": " + why);
+    written = CGAL::IO::write_hex_mesh(fname, mesh, fields, &error);
+  }
+  if(!written)
+    raise(PyExc_OSError, error.what()); // the mesh and the format were checked: the file system refused
 }
 
 // ------------------------------------------------------------------ quality
@@ -560,14 +576,17 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
 
   m.def("read", &read_mesh, py::arg("path"),
         "read(path) -> (points, hexes)\n\n"
-        "Reads a hexahedral mesh (the format from the extension: .mesh, .vtk, .vtu and the others the\n"
-        "package reads). points: float64 array (N, 3); hexes: int64 array (M, 8), MEDIT/VTK vertex order,\n"
+        "Reads a hexahedral mesh, the format from the extension: .mesh, .vtk, .vtu, .msh, .inp, .exo, .e.\n"
+        "points: float64 array (N, 3); hexes: int64 array (M, 8), MEDIT/VTK vertex order,\n"
         "numbered from 0. Raises OSError when the file cannot be opened, ValueError when it cannot be read.");
   m.def("write", &write_mesh, py::arg("path"), py::arg("points"), py::arg("hexes"), py::arg("cell_data") = py::none(),
-        "write(path, points, hexes, cell_data=None)\n\n"
-        "Writes a hexahedral mesh, the format from the extension; cell_data: a dict name -> one number per\n"
-        "hexahedron, written as cell fields where the format has them (not in MEDIT). The file is replaced\n"
-        "atomically: on failure nothing is written. ValueError for a bad mesh or extension, OSError otherwise.");
+        py::arg("format") = py::none(),
+        "write(path, points, hexes, cell_data=None, format=None)\n\n"
+        "Writes a hexahedral mesh, the format from the extension (.mesh, .vtk, .vtu, .msh, .inp, .exo, .e) or\n"
+        "from format: 'mesh', 'vtk', 'vtk-binary', 'vtu', 'msh' (= 'msh41'), 'msh41', 'msh41-binary', 'msh22',\n"
+        "'msh22-binary', 'inp', 'exo'. cell_data: a dict name -> one number per hexahedron, written as cell\n"
+        "fields where the format has them (VTK, VTU, gmsh). The file is replaced atomically: on failure\n"
+        "nothing is written. ValueError for a bad mesh, extension or format, OSError otherwise.");
   m.def("scaled_jacobian", &scaled_jacobian, py::arg("points"), py::arg("hexes"),
         "scaled_jacobian(points, hexes) -> float64 array, the Verdict scaled Jacobian of each hexahedron\n"
         "(minimum over its 8 corners and its centre; negative: inverted).");

@@ -66,16 +66,6 @@ int fail(const std::string& message)
   return 1;
 }
 
-bool ends_with(const std::string& s, const std::string& suffix)
-{
-  if(s.size() < suffix.size())
-    return false;
-  for(std::size_t i = 0; i < suffix.size(); ++i)
-    if(std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i])
-      return false;
-  return true;
-}
-
 /// Ctrl-C (SIGINT) and SIGTERM: the first one sets the library's stop flag
 /// (the stages stop at their next safe point, the last checked state is
 /// written and the status is 128 + the signal); the handler then reverts to
@@ -365,9 +355,12 @@ int main(int argc, char** argv)
       print_run_warnings(r, reference_warning);
 
       CGAL::IO::Hex_mesh_fields fields;
-      if(ends_with(options.output, ".vtk") || ends_with(options.output, ".vtu") || ends_with(options.output, ".msh"))
-        fields.cell_scalars.push_back({"scaled_jacobian", sj});
-      if(!CGAL::IO::write_hex_mesh(options.output, mesh, fields, &io_error))
+      // the formats with a place for cell fields (the others ignore them)
+      fields.cell_scalars.push_back({"scaled_jacobian", sj});
+      const bool written = options.has_output_format
+                             ? CGAL::IO::write_hex_mesh_as(options.output_format, options.output, mesh, fields, &io_error)
+                             : CGAL::IO::write_hex_mesh(options.output, mesh, fields, &io_error);
+      if(!written)
         return fail(io_error.what());
       if(!options.quiet)
       {

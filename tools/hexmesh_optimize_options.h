@@ -9,6 +9,8 @@
 #ifndef HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
 #define HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
 
+#include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -41,6 +43,9 @@ struct Hexmesh_optimize_options
   bool relax_surface = true;      ///< --frozen-surface
   bool check = false;             ///< --check: TetGen reference-volume check of the output
   std::size_t worst = 0;          ///< --worst N: list the N worst elements; 0: none
+  /// --output-format FORMAT: the format of OUTPUT whatever its extension
+  bool has_output_format = false;
+  CGAL::IO::Hex_mesh_file_format output_format = CGAL::IO::Hex_mesh_file_format::medit;
 };
 
 /// One command-line option. `value_name` is nullptr for a flag; `apply`
@@ -175,6 +180,19 @@ inline const std::vector<Option_spec>& option_table()
      "id of ParaView), scaled Jacobian and centre (mean of the 8 vertices); also in the --report JSON as "
      "\"worst\" (default 0: none)",
      [](O& o, const std::string& v, std::string& e) { return parse_count("--worst", v, 1000000000, o.worst, e); }},
+    {"--output-format", "FORMAT",
+     "write OUTPUT in FORMAT whatever its extension: mesh, vtk, vtk-binary, vtu, msh (= msh41), msh41, "
+     "msh41-binary, msh22, msh22-binary, inp, exo (default: from the extension; .msh is 4.1 ASCII, .vtk ASCII)",
+     [](O& o, const std::string& v, std::string& e) {
+       if(!CGAL::IO::parse_hex_mesh_file_format(v, o.output_format))
+       {
+         e = "option --output-format: unknown format '" + v +
+             "' (expected mesh, vtk, vtk-binary, vtu, msh, msh41, msh41-binary, msh22, msh22-binary, inp or exo)";
+         return false;
+       }
+       o.has_output_format = true;
+       return true;
+     }},
     {"--quiet", nullptr,
      "print only warnings and errors",
      [](O& o, const std::string&, std::string&) { o.quiet = true; return true; }},
@@ -311,9 +329,10 @@ inline Parse_result parse_options(int argc, const char* const* argv, Hexmesh_opt
   {
     options.output = files[1];
     // checked now rather than after a long optimisation
-    if(!has_mesh_extension(options.output))
+    if(!options.has_output_format && !has_mesh_extension(options.output))
     {
-      error = "output '" + options.output + "' must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e";
+      error = "output '" + options.output +
+              "' must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e (or give --output-format)";
       return Parse_result::error;
     }
   }

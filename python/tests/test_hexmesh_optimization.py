@@ -135,15 +135,32 @@ def test_bad_arrays_are_value_errors(points, hexes, message):
 # ------------------------------------------------------------------ writing
 
 
-@pytest.mark.parametrize("extension", [".mesh", ".vtk", ".vtu"])
+@pytest.mark.parametrize("extension", [".mesh", ".vtk", ".vtu", ".msh", ".inp", ".exo"])
 def test_write_then_read_is_exact(tmp_path, bunny, extension):
     path = str(tmp_path / ("bunny" + extension))
     sj = hmo.scaled_jacobian(*bunny)
     hmo.write(path, *bunny, cell_data={"scaled_jacobian": sj})
     points, hexes = hmo.read(path)
     assert np.array_equal(points, bunny[0]) and np.array_equal(hexes, bunny[1])
-    if extension == ".vtu":
+    if extension in (".vtu", ".msh"):
         assert "scaled_jacobian" in open(path).read()
+
+
+@pytest.mark.parametrize("fmt, head", [("msh22-binary", b"$MeshFormat\n2.2 1 8\n"),
+                                       ("msh41-binary", b"$MeshFormat\n4.1 1 8\n"),
+                                       ("msh22", b"$MeshFormat\n2.2 0 8\n"),
+                                       ("vtk-binary", b"# vtk DataFile"),
+                                       ("inp", b"*HEADING")])
+def test_write_in_a_chosen_format(tmp_path, bunny, fmt, head):
+    path = str(tmp_path / "bunny.out")  # an extension that names no format
+    hmo.write(path, *bunny, format=fmt)
+    assert open(path, "rb").read(len(head)) == head
+    if fmt.startswith("msh"):
+        os.rename(path, path + ".msh")
+        points, hexes = hmo.read(path + ".msh")
+        assert np.array_equal(points, bunny[0]) and np.array_equal(hexes, bunny[1])
+    with pytest.raises(ValueError, match="unknown format"):
+        hmo.write(path, *bunny, format="stl")
 
 
 def test_write_refuses_bad_input_and_leaves_no_file(tmp_path, bunny):

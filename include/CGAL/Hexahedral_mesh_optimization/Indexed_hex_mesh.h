@@ -86,13 +86,22 @@ struct Indexed_hex_mesh
   /// Empty when the file had none; a reference array is either empty or as
   /// long as the array it refers to.
   /// @{
+
+  /// the integer reference of each vertex
   std::vector<int> point_references;
+  /// the reference (group) of each hexahedron: see also the simulation formats below
   std::vector<int> hexahedron_references;
+  /// boundary quadrilaterals, 4 indices into `points` each
   std::vector<Quadrilateral> quadrilaterals;
+  /// the reference of each quadrilateral
   std::vector<int> quadrilateral_references;
+  /// boundary triangles, 3 indices into `points` each
   std::vector<Triangle> triangles;
+  /// the reference of each triangle
   std::vector<int> triangle_references;
+  /// edges, 2 indices into `points` each
   std::vector<Edge> edges;
+  /// the reference of each edge
   std::vector<int> edge_references;
   /// indices into `points`
   std::vector<std::size_t> corners;
@@ -107,6 +116,7 @@ struct Indexed_hex_mesh
   /// have them (Abaqus `.inp`, Exodus II) and are ignored by the others
   /// (gmsh keeps the references and their names only).
   /// @{
+
   /// names of hexahedron references (gmsh physical names, Exodus block names)
   std::map<int, std::string> hexahedron_reference_names;
   /// named vertex sets (Abaqus `*NSET`, Exodus node sets)
@@ -120,15 +130,19 @@ struct Indexed_hex_mesh
   /// `points` / `hexahedra`. Writers of these formats reuse them when they
   /// are present, unique and positive, and number from 1 otherwise.
   std::vector<long long> point_ids;
+  /// the ids of the hexahedra in the file read (see `point_ids`)
   std::vector<long long> hexahedron_ids;
   /// the Abaqus element type of the hexahedra (`C3D8`, `C3D8R`, `C3D8I`,
   /// `C3D8H`, ...); empty: `C3D8`
   std::string abaqus_element_type;
   /// @}
 
+  /// the number of vertices
   std::size_t number_of_vertices() const { return points.size(); }
+  /// the number of hexahedra
   std::size_t number_of_hexahedra() const { return hexahedra.size(); }
 
+  /// empties the mesh, optional data included
   void clear()
   {
     *this = Indexed_hex_mesh();

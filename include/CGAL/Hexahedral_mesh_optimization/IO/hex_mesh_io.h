@@ -476,6 +476,85 @@ bool write_hex_mesh(const std::string& fname, const Indexed_hex_mesh<Point>& mes
   }
 }
 
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief A file format and variant that `write_hex_mesh_as()` writes, whatever
+the extension of the file name.
+*/
+enum class Hex_mesh_file_format
+{
+  medit,        ///< ASCII MEDIT `.mesh` (`write_MEDIT()`)
+  vtk,          ///< legacy VTK, ASCII (`write_VTK()`)
+  vtk_binary,   ///< legacy VTK, BINARY
+  vtu,          ///< VTK XML unstructured grid (`write_VTU()`)
+  msh41,        ///< gmsh 4.1, ASCII (`write_MSH()`)
+  msh41_binary, ///< gmsh 4.1, binary
+  msh22,        ///< gmsh 2.2, ASCII
+  msh22_binary, ///< gmsh 2.2, binary
+  inp,          ///< Abaqus input file (`write_INP()`)
+  exodus        ///< Exodus II (`write_EXODUS()`)
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief The format named `name`: `mesh`, `vtk`, `vtk-binary`, `vtu`, `msh`
+(= `msh41`), `msh41`, `msh41-binary`, `msh22`, `msh22-binary`, `inp`, `exo`
+(case-insensitive).
+
+\return `false` when `name` names none of them
+*/
+inline bool parse_hex_mesh_file_format(const std::string& name, Hex_mesh_file_format& format)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  static const std::pair<const char*, Hex_mesh_file_format> names[] = {
+    {"mesh", Hex_mesh_file_format::medit},       {"vtk", Hex_mesh_file_format::vtk},
+    {"vtk-binary", Hex_mesh_file_format::vtk_binary}, {"vtu", Hex_mesh_file_format::vtu},
+    {"msh", Hex_mesh_file_format::msh41},        {"msh41", Hex_mesh_file_format::msh41},
+    {"msh41-binary", Hex_mesh_file_format::msh41_binary}, {"msh22", Hex_mesh_file_format::msh22},
+    {"msh22-binary", Hex_mesh_file_format::msh22_binary}, {"inp", Hex_mesh_file_format::inp},
+    {"exo", Hex_mesh_file_format::exodus}};
+  const std::string lower = io::to_lower(name);
+  for(const auto& n : names)
+    if(lower == n.first)
+    {
+      format = n.second;
+      return true;
+    }
+  return false;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh` to `fname` in `format`, whatever the extension of
+`fname` (for a file name without one, or an ambiguous one such as `.msh` or
+`.vtk`, whose variants this chooses). `fields` are written where the format
+has a place for them (VTK, VTU, gmsh) and ignored otherwise.
+
+Parameters and result as for `write_VTK()`.
+*/
+template <class Point>
+bool write_hex_mesh_as(Hex_mesh_file_format format, const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+                       const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr)
+{
+  switch(format)
+  {
+  case Hex_mesh_file_format::medit: return write_MEDIT(fname, mesh, err);
+  case Hex_mesh_file_format::vtk: return write_VTK(fname, mesh, fields, err, false);
+  case Hex_mesh_file_format::vtk_binary: return write_VTK(fname, mesh, fields, err, true);
+  case Hex_mesh_file_format::vtu: return write_VTU(fname, mesh, fields, err);
+  case Hex_mesh_file_format::msh41: return write_MSH(fname, mesh, fields, err, Gmsh_version::v4_1, false);
+  case Hex_mesh_file_format::msh41_binary: return write_MSH(fname, mesh, fields, err, Gmsh_version::v4_1, true);
+  case Hex_mesh_file_format::msh22: return write_MSH(fname, mesh, fields, err, Gmsh_version::v2_2, false);
+  case Hex_mesh_file_format::msh22_binary: return write_MSH(fname, mesh, fields, err, Gmsh_version::v2_2, true);
+  case Hex_mesh_file_format::inp: return write_INP(fname, mesh, err);
+  case Hex_mesh_file_format::exodus: return write_EXODUS(fname, mesh, err);
+  }
+  return false;
+}
+
 /// @}
 
 } // namespace IO
