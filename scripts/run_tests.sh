@@ -7,7 +7,8 @@
 #   3. the libFuzzer targets of every reader (clang++, ASan + UBSan) in
 #      build-fuzz/, each run for FUZZ_SECONDS (default 60) on its seed
 #      corpus and regression inputs (scripts/fuzz.sh).
-# About 40 minutes on 2 cores from scratch (37.5 min measured, fresh clone).
+# About 50 minutes on 2 cores from scratch (43.7 min measured before the
+# Python, examples and manual tests were added; see the README).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
