@@ -40,6 +40,295 @@ inline std::string msh_quoted(const std::string& name)
   return q + "\"";
 }
 
+
+/// the reference of hexahedron `h`, 0 when the mesh has none
+template <class Point>
+int msh_reference(const Indexed_hex_mesh<Point>& mesh, std::size_t h)
+{
+  return mesh.hexahedron_references.empty() ? 0 : mesh.hexahedron_references[h];
+}
+
+/// what the sections of a gmsh file refer to: the node and element tags and
+/// the volume entity of each reference
+struct Msh_numbering
+{
+  std::vector<long long> node_tags;
+  std::vector<long long> hex_tags;
+  std::map<int, int> entity_of;  // reference -> entity tag, from 1
+};
+
+/// the tags of the mesh (1..n when its ids do not fit the 32-bit ints of
+/// binary 2.2 and of every $ElementData) and one volume entity per distinct
+/// reference, numbered from 1 in increasing order of the references
+template <class Point>
+Msh_numbering msh_numbering(const Indexed_hex_mesh<Point>& mesh)
+{
+  Msh_numbering numbering;
+  numbering.node_tags = ids_for_writing(mesh.point_ids, mesh.points.size());
+  numbering.hex_tags = ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
+  const auto fits_int = [](const std::vector<long long>& tags) {
+    return std::all_of(tags.begin(), tags.end(), [](long long t) { return t <= INT_MAX; });
+  };
+  if(!fits_int(numbering.node_tags))
+    numbering.node_tags = ids_for_writing(std::vector<long long>(), mesh.points.size());
+  if(!fits_int(numbering.hex_tags))
+    numbering.hex_tags = ids_for_writing(std::vector<long long>(), mesh.hexahedra.size());
+  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+    numbering.entity_of.emplace(msh_reference(mesh, h), 0);
+  int next_entity = 0;
+  for(auto& e : numbering.entity_of)
+    e.second = ++next_entity;
+  return numbering;
+}
+
+/// writes the values of a gmsh section: as text, each followed by its
+/// separator, or in binary (sizes as uint64, ints as int32, reals as double)
+struct Msh_value_writer
+{
+  Output_buffer& out;
+  bool binary;
+
+  void size_value(std::size_t v, char after) const
+  {
+    if(binary)
+      out.native(std::uint64_t(v));
+    else
+      out << v << after;
+  }
+  void int_value(long long v, char after) const
+  {
+    if(binary)
+      out.native(std::int32_t(v));
+    else
+      out << v << after;
+  }
+  void real_value(double v, char after) const
+  {
+    if(binary)
+      out.native(v);
+    else
+      out << v << after;
+  }
+  /// binary data ends with a line break before the closing keyword
+  void newline_after_binary() const
+  {
+    if(binary)
+      out << '\n';
+  }
+};
+
+/// $MeshFormat, and $PhysicalNames for the named positive references
+template <class Point>
+void write_msh_header(Output_buffer& out, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering,
+                      bool v4, bool binary)
+{
+  out << "$MeshFormat\n" << (v4 ? "4.1 " : "2.2 ") << (binary ? "1 8\n" : "0 8\n");
+  if(binary)
+  {
+    out.native(std::int32_t(1));
+    out << '\n';
+  }
+  out << "$EndMeshFormat\n";
+
+  std::vector<std::pair<int, std::string> > names;
+  for(const auto& n : mesh.hexahedron_reference_names)
+    if(n.first > 0 && numbering.entity_of.count(n.first))
+      names.push_back(n);
+  if(!names.empty())
+  {
+    out << "$PhysicalNames\n" << names.size() << '\n';
+    for(const auto& n : names)
+      out << "3 " << n.first << ' ' << msh_quoted(n.second) << '\n';
+    out << "$EndPhysicalNames\n";
+  }
+}
+
+/// the bounding box (min x, y, z, max x, y, z) of the hexahedra of each reference
+template <class Point>
+std::map<int, std::array<double, 6> > msh_entity_boxes(const Indexed_hex_mesh<Point>& mesh)
+{
+  const typename Kernel_traits<Point>::Kernel gt;
+  std::map<int, std::array<double, 6> > boxes;
+  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+  {
+    auto it = boxes.find(msh_reference(mesh, h));
+    if(it == boxes.end())
+    {
+      const double inf = std::numeric_limits<double>::infinity();
+      it = boxes.emplace(msh_reference(mesh, h), std::array<double, 6>{{inf, inf, inf, -inf, -inf, -inf}}).first;
+    }
+    for(std::size_t v : mesh.hexahedra[h])
+    {
+      const Vec3 p = to_vec3(mesh.points[v], gt);
+      for(int a = 0; a < 3; ++a)
+      {
+        it->second[a] = (std::min)(it->second[a], p[a]);
+        it->second[a + 3] = (std::max)(it->second[a + 3], p[a]);
+      }
+    }
+  }
+  return boxes;
+}
+
+/// 4.1 $Entities: no points, curves or surfaces, one volume per reference
+/// with its bounding box and, for a positive reference, its physical tag
+template <class Point>
+void write_msh4_entities(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering)
+{
+  std::map<int, std::array<double, 6> > boxes = msh_entity_boxes(mesh);
+  w.out << "$Entities\n";
+  w.size_value(0, ' ');
+  w.size_value(0, ' ');
+  w.size_value(0, ' ');
+  w.size_value(numbering.entity_of.size(), '\n');
+  for(const auto& e : numbering.entity_of)
+  {
+    w.int_value(e.second, ' ');
+    for(double c : boxes[e.first])
+      w.real_value(c, ' ');
+    w.size_value(e.first > 0 ? 1 : 0, ' ');
+    if(e.first > 0)
+      w.int_value(e.first, ' ');
+    w.size_value(0, '\n');
+  }
+  w.newline_after_binary();
+  w.out << "$EndEntities\n";
+}
+
+/// the smallest and largest tag, (0, 0) when there are none
+inline std::pair<long long, long long> msh_tag_range(const std::vector<long long>& tags)
+{
+  return tags.empty() ? std::make_pair(0LL, 0LL)
+                      : std::make_pair(*std::min_element(tags.begin(), tags.end()),
+                                       *std::max_element(tags.begin(), tags.end()));
+}
+
+/// 4.1 $Nodes: every node in one block, on the first volume
+template <class Point>
+void write_msh4_nodes(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering)
+{
+  const typename Kernel_traits<Point>::Kernel gt;
+  const auto node_range = msh_tag_range(numbering.node_tags);
+  w.out << "$Nodes\n";
+  w.size_value(1, ' ');
+  w.size_value(mesh.points.size(), ' ');
+  w.size_value(std::size_t(node_range.first), ' ');
+  w.size_value(std::size_t(node_range.second), '\n');
+  w.int_value(3, ' ');
+  w.int_value(1, ' ');
+  w.int_value(0, ' ');
+  w.size_value(mesh.points.size(), '\n');
+  for(long long t : numbering.node_tags)
+    w.size_value(std::size_t(t), '\n');
+  for(const Point& q : mesh.points)
+  {
+    const Vec3 p = to_vec3(q, gt);
+    w.real_value(p[0], ' ');
+    w.real_value(p[1], ' ');
+    w.real_value(p[2], '\n');
+  }
+  w.newline_after_binary();
+  w.out << "$EndNodes\n";
+}
+
+/// 4.1 $Elements: a block per run of hexahedra of the same reference, so
+/// that the order of the hexahedra is kept
+template <class Point>
+void write_msh4_elements(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering)
+{
+  std::vector<std::pair<std::size_t, std::size_t> > runs;
+  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+    if(runs.empty() || msh_reference(mesh, h) != msh_reference(mesh, runs.back().first))
+      runs.push_back({h, h + 1});
+    else
+      runs.back().second = h + 1;
+  const auto hex_range = msh_tag_range(numbering.hex_tags);
+  w.out << "$Elements\n";
+  w.size_value(runs.size(), ' ');
+  w.size_value(mesh.hexahedra.size(), ' ');
+  w.size_value(std::size_t(hex_range.first), ' ');
+  w.size_value(std::size_t(hex_range.second), '\n');
+  for(const auto& run : runs)
+  {
+    w.int_value(3, ' ');
+    w.int_value(numbering.entity_of.at(msh_reference(mesh, run.first)), ' ');
+    w.int_value(5, ' ');
+    w.size_value(run.second - run.first, '\n');
+    for(std::size_t h = run.first; h < run.second; ++h)
+    {
+      w.size_value(std::size_t(numbering.hex_tags[h]), ' ');
+      for(int k = 0; k < 8; ++k)
+        w.size_value(std::size_t(numbering.node_tags[mesh.hexahedra[h][k]]), k == 7 ? '\n' : ' ');
+    }
+  }
+  w.newline_after_binary();
+  w.out << "$EndElements\n";
+}
+
+/// 2.2 $Nodes: tag and coordinates of each node
+template <class Point>
+void write_msh2_nodes(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering)
+{
+  const typename Kernel_traits<Point>::Kernel gt;
+  w.out << "$Nodes\n" << mesh.points.size() << '\n';
+  for(std::size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    const Vec3 p = to_vec3(mesh.points[i], gt);
+    w.int_value(numbering.node_tags[i], ' ');
+    w.real_value(p[0], ' ');
+    w.real_value(p[1], ' ');
+    w.real_value(p[2], '\n');
+  }
+  w.newline_after_binary();
+  w.out << "$EndNodes\n";
+}
+
+/// 2.2 $Elements: each hexahedron (type 5) with two tags, its physical tag
+/// (0 for references <= 0) and its entity; binary files have one header
+/// for all of them
+template <class Point>
+void write_msh2_elements(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh, const Msh_numbering& numbering)
+{
+  w.out << "$Elements\n" << mesh.hexahedra.size() << '\n';
+  if(w.binary)
+  {
+    w.out.native(std::int32_t(5));
+    w.out.native(std::int32_t(mesh.hexahedra.size()));
+    w.out.native(std::int32_t(2));
+  }
+  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+  {
+    const int reference = msh_reference(mesh, h);
+    w.int_value(numbering.hex_tags[h], ' ');
+    if(!w.binary)
+      w.out << "5 2 ";
+    w.int_value(reference > 0 ? reference : 0, ' ');
+    w.int_value(numbering.entity_of.at(reference), ' ');
+    for(int k = 0; k < 8; ++k)
+      w.int_value(numbering.node_tags[mesh.hexahedra[h][k]], k == 7 ? '\n' : ' ');
+  }
+  w.newline_after_binary();
+  w.out << "$EndElements\n";
+}
+
+/// one $ElementData per cell field, a view gmsh colours the mesh by
+template <class Point>
+void write_msh_element_data(const Msh_value_writer& w, const Indexed_hex_mesh<Point>& mesh,
+                            const CGAL::IO::Hex_mesh_fields& fields, const Msh_numbering& numbering)
+{
+  for(const auto& f : fields.cell_scalars)
+  {
+    w.out << "$ElementData\n1\n" << msh_quoted(f.first) << "\n1\n0\n3\n0\n1\n" << mesh.hexahedra.size() << '\n';
+    for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
+    {
+      w.int_value(numbering.hex_tags[h], ' ');
+      w.real_value(f.second[h], '\n');
+    }
+    w.newline_after_binary();
+    w.out << "$EndElementData\n";
+  }
+}
+
 template <class Point>
 bool write_MSH_file(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
                     const CGAL::IO::Hex_mesh_fields& fields, CGAL::IO::Hex_mesh_io_error* err,
@@ -48,214 +337,22 @@ bool write_MSH_file(const std::string& fname, const Indexed_hex_mesh<Point>& mes
   if(!check_before_writing(fname, mesh, fields, err))
     return false;
   const bool v4 = version == CGAL::IO::Gmsh_version::v4_1;
-  std::vector<long long> node_tags = ids_for_writing(mesh.point_ids, mesh.points.size());
-  std::vector<long long> hex_tags = ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
-  // binary 2.2 and every $ElementData store tags as 32-bit ints
-  const auto fits_int = [](const std::vector<long long>& tags) {
-    return std::all_of(tags.begin(), tags.end(), [](long long t) { return t <= INT_MAX; });
-  };
-  if(!fits_int(node_tags))
-    node_tags = ids_for_writing(std::vector<long long>(), mesh.points.size());
-  if(!fits_int(hex_tags))
-    hex_tags = ids_for_writing(std::vector<long long>(), mesh.hexahedra.size());
-
-  // one volume entity per distinct reference, numbered from 1
-  const auto reference = [&mesh](std::size_t h) {
-    return mesh.hexahedron_references.empty() ? 0 : mesh.hexahedron_references[h];
-  };
-  std::map<int, int> entity_of;
-  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-    entity_of.emplace(reference(h), 0);
-  int next_entity = 0;
-  for(auto& e : entity_of)
-    e.second = ++next_entity;
-
+  const Msh_numbering numbering = msh_numbering(mesh);
   return write_atomically(fname, err, [&](Output_buffer& out, std::string&) {
-    const typename Kernel_traits<Point>::Kernel gt;
-    const auto newline_after_binary = [&]() {
-      if(binary)
-        out << '\n';
-    };
-    out << "$MeshFormat\n" << (v4 ? "4.1 " : "2.2 ") << (binary ? "1 8\n" : "0 8\n");
-    if(binary)
-    {
-      out.native(std::int32_t(1));
-      out << '\n';
-    }
-    out << "$EndMeshFormat\n";
-
-    std::vector<std::pair<int, std::string> > names;
-    for(const auto& n : mesh.hexahedron_reference_names)
-      if(n.first > 0 && entity_of.count(n.first))
-        names.push_back(n);
-    if(!names.empty())
-    {
-      out << "$PhysicalNames\n" << names.size() << '\n';
-      for(const auto& n : names)
-        out << "3 " << n.first << ' ' << msh_quoted(n.second) << '\n';
-      out << "$EndPhysicalNames\n";
-    }
-
-    const auto size_value = [&](std::size_t v, char after) {
-      if(binary)
-        out.native(std::uint64_t(v));
-      else
-        out << v << after;
-    };
-    const auto int_value = [&](long long v, char after) {
-      if(binary)
-        out.native(std::int32_t(v));
-      else
-        out << v << after;
-    };
-    const auto real_value = [&](double v, char after) {
-      if(binary)
-        out.native(v);
-      else
-        out << v << after;
-    };
-
+    const Msh_value_writer w{out, binary};
+    write_msh_header(out, mesh, numbering, v4, binary);
     if(v4)
     {
-      // bounding boxes of the entities
-      std::map<int, std::array<double, 6> > boxes;
-      for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-      {
-        auto it = boxes.find(reference(h));
-        if(it == boxes.end())
-        {
-          const double inf = std::numeric_limits<double>::infinity();
-          it = boxes.emplace(reference(h), std::array<double, 6>{{inf, inf, inf, -inf, -inf, -inf}}).first;
-        }
-        for(std::size_t v : mesh.hexahedra[h])
-        {
-          const Vec3 p = to_vec3(mesh.points[v], gt);
-          for(int a = 0; a < 3; ++a)
-          {
-            it->second[a] = (std::min)(it->second[a], p[a]);
-            it->second[a + 3] = (std::max)(it->second[a + 3], p[a]);
-          }
-        }
-      }
-      out << "$Entities\n";
-      size_value(0, ' ');
-      size_value(0, ' ');
-      size_value(0, ' ');
-      size_value(entity_of.size(), '\n');
-      for(const auto& e : entity_of)
-      {
-        int_value(e.second, ' ');
-        for(double c : boxes[e.first])
-          real_value(c, ' ');
-        size_value(e.first > 0 ? 1 : 0, ' ');
-        if(e.first > 0)
-          int_value(e.first, ' ');
-        size_value(0, '\n');
-      }
-      newline_after_binary();
-      out << "$EndEntities\n";
-
-      const auto minmax = [](const std::vector<long long>& t) {
-        return t.empty() ? std::make_pair(0LL, 0LL)
-                         : std::make_pair(*std::min_element(t.begin(), t.end()), *std::max_element(t.begin(), t.end()));
-      };
-      // every node in one block, on the first volume
-      const auto node_range = minmax(node_tags);
-      out << "$Nodes\n";
-      size_value(1, ' ');
-      size_value(mesh.points.size(), ' ');
-      size_value(std::size_t(node_range.first), ' ');
-      size_value(std::size_t(node_range.second), '\n');
-      int_value(3, ' ');
-      int_value(1, ' ');
-      int_value(0, ' ');
-      size_value(mesh.points.size(), '\n');
-      for(long long t : node_tags)
-        size_value(std::size_t(t), '\n');
-      for(const Point& q : mesh.points)
-      {
-        const Vec3 p = to_vec3(q, gt);
-        real_value(p[0], ' ');
-        real_value(p[1], ' ');
-        real_value(p[2], '\n');
-      }
-      newline_after_binary();
-      out << "$EndNodes\n";
-
-      // a block per run of hexahedra of the same reference: the order is kept
-      std::vector<std::pair<std::size_t, std::size_t> > runs;
-      for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-        if(runs.empty() || reference(h) != reference(runs.back().first))
-          runs.push_back({h, h + 1});
-        else
-          runs.back().second = h + 1;
-      const auto hex_range = minmax(hex_tags);
-      out << "$Elements\n";
-      size_value(runs.size(), ' ');
-      size_value(mesh.hexahedra.size(), ' ');
-      size_value(std::size_t(hex_range.first), ' ');
-      size_value(std::size_t(hex_range.second), '\n');
-      for(const auto& run : runs)
-      {
-        int_value(3, ' ');
-        int_value(entity_of[reference(run.first)], ' ');
-        int_value(5, ' ');
-        size_value(run.second - run.first, '\n');
-        for(std::size_t h = run.first; h < run.second; ++h)
-        {
-          size_value(std::size_t(hex_tags[h]), ' ');
-          for(int k = 0; k < 8; ++k)
-            size_value(std::size_t(node_tags[mesh.hexahedra[h][k]]), k == 7 ? '\n' : ' ');
-        }
-      }
-      newline_after_binary();
-      out << "$EndElements\n";
+      write_msh4_entities(w, mesh, numbering);
+      write_msh4_nodes(w, mesh, numbering);
+      write_msh4_elements(w, mesh, numbering);
     }
     else
     {
-      out << "$Nodes\n" << mesh.points.size() << '\n';
-      for(std::size_t i = 0; i < mesh.points.size(); ++i)
-      {
-        const Vec3 p = to_vec3(mesh.points[i], gt);
-        int_value(node_tags[i], ' ');
-        real_value(p[0], ' ');
-        real_value(p[1], ' ');
-        real_value(p[2], '\n');
-      }
-      newline_after_binary();
-      out << "$EndNodes\n$Elements\n" << mesh.hexahedra.size() << '\n';
-      if(binary)
-      {
-        out.native(std::int32_t(5));
-        out.native(std::int32_t(mesh.hexahedra.size()));
-        out.native(std::int32_t(2));
-      }
-      for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-      {
-        int_value(hex_tags[h], ' ');
-        if(!binary)
-          out << "5 2 ";
-        int_value(reference(h) > 0 ? reference(h) : 0, ' ');
-        int_value(entity_of[reference(h)], ' ');
-        for(int k = 0; k < 8; ++k)
-          int_value(node_tags[mesh.hexahedra[h][k]], k == 7 ? '\n' : ' ');
-      }
-      newline_after_binary();
-      out << "$EndElements\n";
+      write_msh2_nodes(w, mesh, numbering);
+      write_msh2_elements(w, mesh, numbering);
     }
-
-    // the cell fields, as views gmsh colours the mesh by
-    for(const auto& f : fields.cell_scalars)
-    {
-      out << "$ElementData\n1\n" << msh_quoted(f.first) << "\n1\n0\n3\n0\n1\n" << mesh.hexahedra.size() << '\n';
-      for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-      {
-        int_value(hex_tags[h], ' ');
-        real_value(f.second[h], '\n');
-      }
-      newline_after_binary();
-      out << "$EndElementData\n";
-    }
+    write_msh_element_data(w, mesh, fields, numbering);
     return true;
   });
 }
