@@ -85,14 +85,20 @@ inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const Hex_m
   constexpr double msj_rounding_tolerance = 1e-12;
   bool worse = after.inverted > before.inverted ||
                (after.inverted == before.inverted && after.msj < before.msj - msj_rounding_tolerance);
+  std::vector<std::size_t> input_uncertified; // computed at most once
+  bool input_certified = false;
   if(!worse && !uncertified.empty())
-    worse = uncertified.size() > uncertified_hexes(input).size();
+  {
+    input_uncertified = uncertified_hexes(input);
+    input_certified = true;
+    worse = uncertified.size() > input_uncertified.size();
+  }
   if(worse)
   {
     mesh = input;
     after = before;
     res.kept_input = true;
-    uncertified = uncertified_hexes(mesh);
+    uncertified = input_certified ? std::move(input_uncertified) : uncertified_hexes(mesh);
   }
   res.certificate.hexes = mesh.hexes.size();
   res.certificate.not_certified = std::move(uncertified);
