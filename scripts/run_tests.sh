@@ -7,8 +7,9 @@
 #   3. the libFuzzer targets of every reader (clang++, ASan + UBSan) in
 #      build-fuzz/, each run for FUZZ_SECONDS (default 60) on its seed
 #      corpus and regression inputs (scripts/fuzz.sh).
-# About 50 minutes on 2 cores from scratch (43.7 min measured before the
-# Python, examples and manual tests were added; see the README).
+# About an hour on 2 cores from scratch (71 min measured from a fresh clone of
+# the commit that added the Python, examples and manual tests, with other
+# builds sharing the 2 cores; 43.7 min before them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
