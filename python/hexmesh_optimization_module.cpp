@@ -196,12 +196,10 @@ void write_mesh(const py::object& path, const py::array& points, const py::array
   bool written = false;
   if(!format.is_none())
   {
-    const std::string name = py::isinstance<py::str>(format) ? std::string(py::str(format)) : std::string();
     CGAL::IO::Hex_mesh_file_format f;
-    if(!CGAL::IO::parse_hex_mesh_file_format(name, f))
-      raise(PyExc_ValueError, "format: unknown format " + std::string(py::repr(format)) +
-                                " (expected mesh, vtk, vtk-binary, vtu, msh, msh41, msh41-binary, msh22, "
-                                "msh22-binary, inp or exo)");
+    std::string why;
+    if(!CGAL::IO::parse_hex_mesh_file_format(std::string(py::str(format)), f, &why))
+      raise(PyExc_ValueError, "format: " + why);
     written = CGAL::IO::write_hex_mesh_as(f, fname, mesh, fields, &error);
   }
   else

@@ -184,10 +184,10 @@ inline const std::vector<Option_spec>& option_table()
      "write OUTPUT in FORMAT whatever its extension: mesh, vtk, vtk-binary, vtu, msh (= msh41), msh41, "
      "msh41-binary, msh22, msh22-binary, inp, exo (default: from the extension; .msh is 4.1 ASCII, .vtk ASCII)",
      [](O& o, const std::string& v, std::string& e) {
-       if(!CGAL::IO::parse_hex_mesh_file_format(v, o.output_format))
+       std::string why;
+       if(!CGAL::IO::parse_hex_mesh_file_format(v, o.output_format, &why))
        {
-         e = "option --output-format: unknown format '" + v +
-             "' (expected mesh, vtk, vtk-binary, vtu, msh, msh41, msh41-binary, msh22, msh22-binary, inp or exo)";
+         e = "option --output-format: " + why;
          return false;
        }
        o.has_output_format = true;

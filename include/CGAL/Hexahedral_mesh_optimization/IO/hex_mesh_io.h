@@ -503,9 +503,14 @@ enum class Hex_mesh_file_format
 (= `msh41`), `msh41`, `msh41-binary`, `msh22`, `msh22-binary`, `inp`, `exo`
 (case-insensitive).
 
+\param name the name
+\param format receives the format named
+\param error if not null and `name` names no format, receives "unknown
+       format '<name>' (expected mesh, vtk, ... or exo)"
 \return `false` when `name` names none of them
 */
-inline bool parse_hex_mesh_file_format(const std::string& name, Hex_mesh_file_format& format)
+inline bool parse_hex_mesh_file_format(const std::string& name, Hex_mesh_file_format& format,
+                                       std::string* error = nullptr)
 {
   namespace io = Hexahedral_mesh_optimization::internal::io;
   static const std::pair<const char*, Hex_mesh_file_format> names[] = {
@@ -522,6 +527,15 @@ inline bool parse_hex_mesh_file_format(const std::string& name, Hex_mesh_file_fo
       format = n.second;
       return true;
     }
+  if(error != nullptr)
+  {
+    // the names of the table, in its order: "mesh, vtk, ... or exo"
+    const std::size_t count = sizeof(names) / sizeof(names[0]);
+    *error = "unknown format '" + name + "' (expected ";
+    for(std::size_t i = 0; i < count; ++i)
+      *error += std::string(i == 0 ? "" : i + 1 == count ? " or " : ", ") + names[i].first;
+    *error += ")";
+  }
   return false;
 }
 
