@@ -270,10 +270,12 @@ void test_curved()
   HMO_CHECK(off == 0);
 }
 
-// The parallel passes: a fixed number of passes gives the same positions
-// twice, and on one thread as on all; no element ends below its floor; the
-// result is comparable with the one-vertex-at-a-time passes in index order.
-void test_parallel()
+// The parallel passes, in colour order and in blocks: a fixed number of
+// passes gives the same positions twice, and on one thread as on all; no
+// element ends below its floor; the result is comparable with the
+// one-vertex-at-a-time passes in index order. One block holding every vertex
+// is index order itself.
+void test_parallel_order(Asj_smoothing_settings::Visit_order order, const char* name)
 {
   const Hex_mesh_arrays in = perturbed_shell(6, 12, 6, 0.2, 5);
   const std::vector<double> sj0 = HMO::internal::scaled_jacobians(in);
@@ -286,6 +288,8 @@ void test_parallel()
   s.max_surface_deviation = 1e-3 * bbox_diagonal(in.points);
   s.max_passes = 4;
   s.min_asj_gain = -1.;
+  s.order = order;
+  s.block_size = 64; // about 10 blocks
   auto run = [&](const Asj_smoothing_settings& settings, Asj_smoothing_report& r) {
     std::vector<Vec3> p = in.points;
     r = HMO::internal::smooth_for_average_quality(topo, &target, p, settings);
@@ -303,13 +307,14 @@ void test_parallel()
   }
 #endif
   Asj_smoothing_settings sequential = s;
-  sequential.parallel = false;
-  run(sequential, rs);
-  std::cout << "parallel: ASJ " << r1.asj_before << " -> " << r1.asj_after << " (" << r1.accepted_moves
+  sequential.order = Asj_smoothing_settings::Visit_order::index;
+  const std::vector<Vec3> ps = run(sequential, rs);
+  std::cout << name << ": ASJ " << r1.asj_before << " -> " << r1.asj_after << " (" << r1.accepted_moves
             << " moves), one at a time " << rs.asj_after << " (" << rs.accepted_moves << " moves)" << std::endl;
   HMO_CHECK(r1.passes == 4);
   HMO_CHECK(r1.asj_after > r1.asj_before + 0.01);
   HMO_CHECK(std::abs(r1.asj_after - rs.asj_after) < 0.5 * (rs.asj_after - rs.asj_before));
+  HMO_CHECK(p1 != ps); // another order
   Hex_mesh_arrays out = in;
   out.points = p1;
   const std::vector<double> sj1 = HMO::internal::scaled_jacobians(out);
@@ -317,6 +322,19 @@ void test_parallel()
   for(std::size_t h = 0; h < sj1.size(); ++h)
     if(!(sj1[h] >= (std::min)(s.min_sj_floor, sj0[h]))) ++below;
   HMO_CHECK(below == 0);
+  if(order == Asj_smoothing_settings::Visit_order::index_blocks)
+  {
+    Asj_smoothing_settings one_block = s;
+    one_block.block_size = in.points.size();
+    Asj_smoothing_report rb;
+    HMO_CHECK(run(one_block, rb) == ps);
+  }
+}
+
+void test_parallel()
+{
+  test_parallel_order(Asj_smoothing_settings::Visit_order::colours, "colour order");
+  test_parallel_order(Asj_smoothing_settings::Visit_order::index_blocks, "blocks of 64");
 }
 
 // The start-deviation shortcut: with the surface guard as the ASJ smoothing's `guard`,

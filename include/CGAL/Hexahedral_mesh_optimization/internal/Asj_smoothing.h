@@ -33,12 +33,14 @@
 // stops when a pass raises the ASJ by less than `min_asj_gain`, after
 // `max_passes` passes or at the time limit.
 //
-// Parallel passes (`parallel`, with TBB): the vertices are coloured so that
-// two of one colour never touch the same hex or read each other's boundary
-// quads (`colour_vertices`); a pass visits the colours in turn, the vertices
-// of one colour on all threads. The result does not depend on the number of
-// threads. bunny_in at MSJ 0.73, 8 s on 2 cores: 24 passes, ASJ 0.938 ->
-// 0.962, against 14 passes, 0.956, one vertex at a time.
+// Parallel passes (`order`, with TBB): the vertices, or blocks of vertices
+// close in space, are coloured so that two of one colour never touch the
+// same hex or read each other's boundary quads (`colour_units`); a pass
+// visits the colours in turn, the vertices or blocks of one colour on all
+// threads, each block in index order. The result does not depend on the
+// number of threads. bunny_in at MSJ 0.73, 8 s on 2 cores: 24 passes, ASJ
+// 0.938 -> 0.962 in colour order, against 14 passes, 0.956, one vertex at a
+// time.
 //
 // Boundary, with a target surface: a regular vertex moves in the tangent
 // plane of the reference at its place and is projected onto the reference
@@ -94,6 +96,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -160,12 +163,25 @@ struct Asj_smoothing_settings
   /// neighbourhood of the worst elements, not the whole mesh (bunny_in: a
   /// pass over all 37.7k hexes takes 2 s).
   double focus_below = std::numeric_limits<double>::infinity();
-  /// Visit the vertices colour by colour, those of one colour on TBB's
-  /// threads (when linked with TBB; see `colour_vertices`); otherwise one at
-  /// a time in index order. Index order suits the short focused passes
-  /// better: fertility_gregson11's turns went on from MSJ 0.70 to 0.748 in
-  /// index order, and stalled at 0.701 in colour order.
-  bool parallel = true;
+  /// The order of a pass, and what runs in parallel (with TBB; the result
+  /// never depends on the number of threads):
+  ///   - `index`: one vertex at a time, in index order;
+  ///   - `colours`: colour by colour (see `colour_units`), the vertices
+  ///     of one colour on all threads;
+  ///   - `index_blocks`: the vertices cut, in index order, into blocks of
+  ///     `block_size`; the blocks are coloured as the vertices are in
+  ///     `colours` (two blocks of one colour share no hex and read none of
+  ///     each other's boundary quads), the blocks of one colour run on all
+  ///     threads, and each block runs in index order.
+  /// Index order suits the short focused passes of the turns better than
+  /// colour order (fertility_gregson11's turns went on from MSJ 0.70 to 0.748
+  /// in index order and stalled at 0.701 in colour order; bunny_in: 0.725
+  /// against 0.587); blocks keep index order but for the few vertices where
+  /// two blocks meet.
+  enum class Visit_order { index, colours, index_blocks };
+  Visit_order order = Visit_order::colours;
+  /// the vertices per block of `Visit_order::index_blocks`
+  std::size_t block_size = 256;
 };
 
 struct Asj_smoothing_report
@@ -346,17 +362,7 @@ public:
       m_ring_off.assign(topo.number_of_vertices() + 1, 0);
     compute_samples();
     m_step.assign(topo.number_of_vertices(), 0.1);
-#ifdef CGAL_LINKED_WITH_TBB
-    if(s.parallel)
-      colour_vertices();
-    else
-#endif
-    {
-      // one "colour": every vertex that may move, in index order
-      m_colours.resize(1);
-      for(std::size_t v = 0; v < topo.number_of_vertices(); ++v)
-        if(m_kind[v] != FIXED) m_colours[0].push_back(v);
-    }
+    order_vertices();
   }
 
   Asj_smoothing_report run()
@@ -402,10 +408,10 @@ public:
       // seconds on large meshes: the clock is read within it too)
       std::fill(moved.begin(), moved.end(), 0);
       std::atomic<bool> out_of_time(false);
-      for(const std::vector<std::size_t>& vertices : m_colours)
+      for(std::size_t colour = 0; colour < m_colours.size(); ++colour)
       {
         if(out_of_time) break;
-        for_each_vertex(vertices, [&](std::size_t v) {
+        for_each_vertex(colour, [&](std::size_t v) {
           if(!active[v] || out_of_time.load(std::memory_order_relaxed)) return;
           if(optimize_vertex(v)) moved[v] = 1;
           if(time_limit_reached(m_s.time_limit)) out_of_time = true;
@@ -538,16 +544,24 @@ private:
     return c;
   }
 
-  // f(v) for each vertex of one colour: on the TBB threads when the package
-  // is linked with TBB and `parallel` is set (a colour's vertices move
-  // independently, so the result does not depend on the threads)
+  // f(v) for each vertex of one colour (`Visit_order::colours`: on the TBB
+  // threads, a colour's vertices moving independently) or of the blocks of
+  // one colour (`Visit_order::index_blocks`: the blocks on the TBB threads,
+  // each in index order); for `Visit_order::index`, the one colour is every
+  // vertex in index order
   template <class F>
-  void for_each_vertex(const std::vector<std::size_t>& vertices, F f) const
+  void for_each_vertex(std::size_t colour, F f) const
   {
-    if(m_s.parallel && m_colours.size() > 1)
-      parallel_for_each_index(vertices.size(), [&](std::size_t i) { f(vertices[i]); }, 64);
+    const std::vector<std::size_t>& members = m_colours[colour];
+    if(m_s.order == Asj_smoothing_settings::Visit_order::index_blocks)
+      parallel_for_each_index(members.size(), [&](std::size_t i) {
+        const std::size_t b = members[i];
+        for(std::size_t k = m_block_begin[b]; k < m_block_begin[b + 1]; ++k) f(m_movable[k]);
+      });
+    else if(m_s.order == Asj_smoothing_settings::Visit_order::colours && m_colours.size() > 1)
+      parallel_for_each_index(members.size(), [&](std::size_t i) { f(members[i]); }, 64);
     else
-      for(std::size_t v : vertices) f(v);
+      for(std::size_t v : members) f(v);
   }
 
   // scratch for the samples of the hexes around the vertex being moved, one
@@ -559,42 +573,114 @@ private:
     return buffer.data();
   }
 
-  // Colours the vertices that may move so that two of one colour can move
-  // at the same time: they share no hex (a move reads and writes the hexes
-  // around its vertex only) and, when both move on the boundary, neither is
-  // a vertex of a boundary quad around a quad neighbour of the other (the
-  // surface tests read the quads two rings out). Greedy, in vertex order;
-  // bunny_in: 21 colours of 2 to 3303 vertices (fertility_gregson11: 20).
-  void colour_vertices()
+  // The order of a pass (`Asj_smoothing_settings::order`): `m_colours` holds
+  // the vertices of each colour, or (`index_blocks`) the blocks of each
+  // colour, block b being m_movable[m_block_begin[b] .. m_block_begin[b + 1]).
+  void order_vertices()
   {
     const std::size_t nv = m_topo.number_of_vertices();
-    const std::size_t none = std::numeric_limits<std::size_t>::max();
-    std::vector<std::size_t> colour(nv, none), stamp;
-    std::vector<std::size_t> near;
-    const auto& bf = m_topo.boundary_faces();
     for(std::size_t v = 0; v < nv; ++v)
+      if(m_kind[v] != FIXED) m_movable.push_back(v);
+    typedef Asj_smoothing_settings::Visit_order Order;
+    Order order = m_s.order;
+#ifndef CGAL_LINKED_WITH_TBB
+    order = Order::index;
+#endif
+    if(order == Order::index)
     {
-      if(m_kind[v] == FIXED) continue;
+      m_colours.assign(1, m_movable);
+      return;
+    }
+    // the units coloured: single vertices, or blocks of vertices close in
+    // space (cut from the Morton order of their positions), each block in
+    // index order
+    const std::size_t size = order == Order::colours ? 1 : (std::max<std::size_t>)(m_s.block_size, 1);
+    if(order == Order::index_blocks) sort_into_blocks(size);
+    const std::size_t none = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> unit_of(nv, none);
+    for(std::size_t k = 0; k < m_movable.size(); ++k) unit_of[m_movable[k]] = k / size;
+    const std::size_t units = (m_movable.size() + size - 1) / size;
+    m_block_begin.clear();
+    for(std::size_t u = 0; u <= units; ++u) m_block_begin.push_back((std::min)(u * size, m_movable.size()));
+    colour_units(unit_of, units);
+    if(order == Order::colours) // a unit is a vertex
+      for(std::vector<std::size_t>& c : m_colours)
+        for(std::size_t& u : c) u = m_movable[u];
+  }
+
+  // Reorders `m_movable` into blocks of `size` vertices close in space: the
+  // vertices sorted by the Morton code of their position in the bounding box
+  // (ties by index), cut into blocks, each block sorted back by index.
+  void sort_into_blocks(std::size_t size)
+  {
+    Vec3 lo = m_p[m_movable.empty() ? 0 : m_movable[0]], hi = lo;
+    for(std::size_t v : m_movable)
+      for(int k = 0; k < 3; ++k) { lo[k] = (std::min)(lo[k], m_p[v][k]); hi[k] = (std::max)(hi[k], m_p[v][k]); }
+    auto spread = [](std::uint64_t x) { // the 21 bits of x, two zero bits between each
+      x &= 0x1fffff;
+      x = (x | x << 32) & 0x1f00000000ffffULL;
+      x = (x | x << 16) & 0x1f0000ff0000ffULL;
+      x = (x | x << 8) & 0x100f00f00f00f00fULL;
+      x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+      x = (x | x << 2) & 0x1249249249249249ULL;
+      return x;
+    };
+    std::vector<std::pair<std::uint64_t, std::size_t> > keyed;
+    keyed.reserve(m_movable.size());
+    for(std::size_t v : m_movable)
+    {
+      std::uint64_t code = 0;
+      for(int k = 0; k < 3; ++k)
+      {
+        const double t = hi[k] > lo[k] ? (m_p[v][k] - lo[k]) / (hi[k] - lo[k]) : 0.;
+        code |= spread(std::uint64_t(t * double(0x1fffff))) << k;
+      }
+      keyed.push_back({code, v});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for(std::size_t k = 0; k < keyed.size(); ++k) m_movable[k] = keyed[k].second;
+    for(std::size_t b = 0; b < m_movable.size(); b += size)
+      std::sort(m_movable.begin() + b, m_movable.begin() + (std::min)(b + size, m_movable.size()));
+  }
+
+  // Greedy colouring, in unit order, of the units (vertices or blocks) so
+  // that two units of one colour can run at the same time: no vertex of one
+  // shares a hex with a vertex of the other (a move reads and writes the
+  // hexes around its vertex only) and, when both move on the boundary,
+  // neither is a vertex of a boundary quad around a quad neighbour of the
+  // other (the surface tests read the quads two rings out). bunny_in, units
+  // of one vertex: 21 colours of 2 to 3303 vertices (fertility_gregson11: 20).
+  void colour_units(const std::vector<std::size_t>& unit_of, std::size_t units)
+  {
+    const std::size_t none = std::numeric_limits<std::size_t>::max();
+    const auto& bf = m_topo.boundary_faces();
+    std::vector<std::size_t> colour(units, none), stamp, near;
+    for(std::size_t u = 0; u < units; ++u)
+    {
       near.clear();
-      for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-        for(std::size_t w : m_topo.hexes()[c->hex]) near.push_back(w);
-      if(m_kind[v] != FREE)
-        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
-          for(std::size_t u : bf[m_bq[k]])
-            for(std::size_t j = m_bq_off[u]; j < m_bq_off[u + 1]; ++j)
-              for(std::size_t w : bf[m_bq[j]]) near.push_back(w);
-      // smallest colour not used by a coloured vertex near v
+      for(std::size_t k = m_block_begin[u]; k < m_block_begin[u + 1]; ++k)
+      {
+        const std::size_t v = m_movable[k];
+        for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+          for(std::size_t w : m_topo.hexes()[c->hex]) near.push_back(unit_of[w]);
+        if(m_kind[v] != FREE)
+          for(std::size_t i = m_bq_off[v]; i < m_bq_off[v + 1]; ++i)
+            for(std::size_t x : bf[m_bq[i]])
+              for(std::size_t j = m_bq_off[x]; j < m_bq_off[x + 1]; ++j)
+                for(std::size_t w : bf[m_bq[j]]) near.push_back(unit_of[w]);
+      }
+      // smallest colour not used by a coloured unit near u
       for(std::size_t w : near)
-        if(w != v && colour[w] != none)
+        if(w != none && w != u && colour[w] != none)
         {
           if(stamp.size() <= colour[w]) stamp.resize(colour[w] + 1, none);
-          stamp[colour[w]] = v;
+          stamp[colour[w]] = u;
         }
       std::size_t k = 0;
-      while(k < stamp.size() && stamp[k] == v) ++k;
-      colour[v] = k;
+      while(k < stamp.size() && stamp[k] == u) ++k;
+      colour[u] = k;
       if(m_colours.size() <= k) m_colours.resize(k + 1);
-      m_colours[k].push_back(v);
+      m_colours[k].push_back(u);
     }
   }
 
@@ -832,8 +918,9 @@ private:
   double m_kappa = 0.; // current sharpness of the objective
   std::vector<double> m_samples, m_sj, m_floor, m_value, m_step;
   std::size_t m_trial_size = 0;
-  // Gauss-Seidel order: the vertices that may move, grouped by colour (see
-  // `colour_vertices`)
+  // Gauss-Seidel order (see `order_vertices`): the vertices that may move,
+  // and the vertices, or blocks of them, of each colour
+  std::vector<std::size_t> m_movable, m_block_begin;
   std::vector<std::vector<std::size_t> > m_colours;
 };
 

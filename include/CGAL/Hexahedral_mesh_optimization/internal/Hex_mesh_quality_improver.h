@@ -366,7 +366,8 @@ private:
       Asj_smoothing_settings one_focused_pass;
       one_focused_pass.max_passes = 1;
       one_focused_pass.focus_below = before + sc.turn_focus_band;
-      one_focused_pass.parallel = false; // index order (see Asj_smoothing_settings::parallel)
+      one_focused_pass.order = Asj_smoothing_settings::Visit_order::index_blocks;
+      one_focused_pass.block_size = sc.turn_block_size;
       one_focused_pass.start_deviation_budget = error_budget(st, m_turn_guard);
       asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drop);
       max_min_stage(st, m_turn_guard * st.tolerance);
