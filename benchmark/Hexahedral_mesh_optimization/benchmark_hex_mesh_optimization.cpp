@@ -100,7 +100,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
 #include <CGAL/improve_hex_mesh_quality.h>

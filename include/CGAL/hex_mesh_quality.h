@@ -8,10 +8,10 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/exact_validity.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/exact_validity.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>

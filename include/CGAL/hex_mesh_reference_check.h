@@ -9,9 +9,9 @@
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Reference_volume_report.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Reference_volume_check.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Reference_check/Reference_volume_check.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/hex_mesh_surface_error.h>
 
 #include <CGAL/Kernel_traits.h>

@@ -7,10 +7,10 @@
 #define CGAL_HEX_MESH_SURFACE_ERROR_H
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/reference_fit.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/reference_fit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_OFF_soup.h>

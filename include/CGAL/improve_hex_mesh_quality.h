@@ -7,7 +7,7 @@
 #define CGAL_IMPROVE_HEX_MESH_QUALITY_H
 
 #include <CGAL/untangle_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_quality_improver.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_quality_improver.h>
 
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {

@@ -9,9 +9,9 @@
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_untangler.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/reference_fit.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/unresolved_elements.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_untangler.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/reference_fit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/unresolved_elements.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>

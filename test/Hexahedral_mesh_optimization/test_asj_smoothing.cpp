@@ -1,7 +1,7 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The ASJ smoothing (internal/Asj_smoothing.h): on perturbed grids it raises
+// The ASJ smoothing (internal/Smoothing/Asj_smoothing.h): on perturbed grids it raises
 // the ASJ, no element ends below min(floor, its own start), the boundary
 // stays on the target (face vertices in their planes, edge vertices on their
 // lines, corners unmoved; a fixed boundary without a target surface), and on
@@ -18,10 +18,10 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Asj_smoothing.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Surface_guard.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/quality_statistics.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Asj_smoothing.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>

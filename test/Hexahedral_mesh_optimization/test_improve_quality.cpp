@@ -17,7 +17,7 @@
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
 #include <CGAL/improve_hex_mesh_quality.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Boundary_restoration.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_restoration.h>
 
 #include <cmath>
 #include <array>

@@ -7,7 +7,7 @@
 #ifndef HMO_TEST_MESHES_H
 #define HMO_TEST_MESHES_H
 
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/number_type_config.h>
 
 #include <algorithm>

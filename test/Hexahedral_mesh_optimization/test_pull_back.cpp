@@ -1,7 +1,7 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The inversion-free pull-back (Section 3.3, internal/Pull_back.h): a valid
+// The inversion-free pull-back (Section 3.3, internal/Untangling/Pull_back.h): a valid
 // mesh whose boundary was moved off the target surface is brought back onto
 // it without any accepted step inverting an element; an unreachable target
 // ends gracefully with a valid mesh.
@@ -9,7 +9,7 @@
 #include "test_meshes.h"
 #include "test_util.h"
 
-#include <CGAL/Hexahedral_mesh_optimization/internal/Pull_back.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Pull_back.h>
 
 #include <CGAL/Real_timer.h>
 

@@ -15,7 +15,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/hex_mesh_quality.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <algorithm>
 #include <array>
@@ -495,7 +495,7 @@ void test_shared_meshes()
   }
 }
 
-/// The one hex-frame kernel (internal/scaled_jacobian.h) every energy uses:
+/// The one hex-frame kernel (internal/Quality/scaled_jacobian.h) every energy uses:
 /// frames from their coefficients, samples, and their analytic gradients
 /// against central differences.
 void test_frame_kernel()

@@ -7,9 +7,9 @@
 #include "test_meshes.h"
 #include "test_util.h"
 
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_boundary.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Target_surface.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/hex_mesh_surface_error.h>
 

@@ -29,7 +29,7 @@
 // the same orientation.
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>

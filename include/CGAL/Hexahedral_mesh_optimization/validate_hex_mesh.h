@@ -7,9 +7,9 @@
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_VALIDATE_HEX_MESH_H
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/face_groups.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/scaled_jacobian.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/face_groups.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 #include <CGAL/Kernel_traits.h>
 
 #include <algorithm>

@@ -11,7 +11,7 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Kernel_traits.h>
 
 #include <array>

@@ -13,7 +13,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/vtk_cells.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
-#include <CGAL/Hexahedral_mesh_optimization/internal/Hex_mesh_arrays.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Kernel_traits.h>
 
 #include <cstdint>

@@ -1,0 +1,766 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_QUALITY_IMPROVER_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_QUALITY_IMPROVER_H
+
+// Quality improvement after untangling (Sections 3.3 and 3.4 and the final
+// smoothing), on flat arrays. The driver `run` calls one method per stage:
+//   1. `set_up`: normalise (mean edge 0.025, as the untangler), target
+//      surface Ω_t of the reference (the original input's boundary, or the
+//      user's surface); the ideal angles are made when an edge-angle pass
+//      first needs them;
+//   2. `pull_back_stage` (Pull_back.h), only when the surface error exceeds
+//      the tolerance (after an untangling that relaxed the surface), and kept
+//      only if it lowers the surface error;
+//   3. `surface_guard_set_up`, then `restoration_stage`
+//      (Boundary_restoration.h): boundary vertices back toward their home on
+//      the reference wherever the MSJ allows;
+//   4. `msj_stages_with_retry`: stages "msj>=t" for t = 0 (only if something
+//      is inverted), 0.1, 0.2, … up to the target, each on what is below t —
+//      max-min smoothing (Worst_element_smoothing.h), boundary moves bounded
+//      by the surface guard (Surface_guard.h), then, while it falls short,
+//      edge-angle passes of Algorithm 1 (Local_optimizer.h) with the
+//      boundary projected back; then the restoration at the MSJ reached;
+//   5. `turns`: one focused ASJ pass and a max-min smoothing in turn while
+//      the MSJ rises, each turn checked against the surface bound;
+//   6. `final_asj_smoothing` (Asj_smoothing.h): raises the mean without
+//      lowering any element below the MSJ reached;
+//   7. undo the normalisation; if the MSJ (or the inverted count) is worse
+//      than the input's, the input is returned.
+// Every stage ends on its own convergence test or work cap, all in
+// Optimization_schedule.h; the time limit is a hard stop only (Time_limit.h).
+// A turn or final smoothing stopped by it before its surface check is undone,
+// so the result is always a checked state. Why this order and these values
+// (measured): the manual's implementation notes.
+//
+// The surface tolerance: the paper bounds nothing and reports the error it
+// got; here the user gives a tolerance (relative to the reference's
+// bounding-box diagonal) that no boundary move of the max-min and ASJ
+// smoothing may exceed locally. The edge-angle passes keep the paper's soft
+// constraints (α, β ≥ 500) and the projection at the end of each pass is
+// refused where it would lower an element under the stage's floor, so the
+// measured error can end slightly above the tolerance: it is reported, not
+// hidden.
+
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Asj_smoothing.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_restoration.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_schedule.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_setup.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Pull_back.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Worst_element_smoothing.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Quality_settings
+{
+  /// the MSJ aimed at; ≥ 1 means as high as the method gets it
+  double target_msj = 1.;
+  double sharp_angle = 165.;
+  double alpha = 1000., beta = 1000.;
+  double min_alpha_beta = 500.;
+  double xi = 0.6;
+  int local_iterations = 20;
+  bool pull_back = true;
+  bool asj_smoothing = true;
+  /// largest surface error allowed to the boundary moves of the quality
+  /// stages, relative to the reference's bounding-box diagonal
+  double surface_tolerance = 0.005;
+  /// the run's hard stop (null: none); it is not the schedule's business
+  const Time_limit* time_limit = nullptr;
+  /// work caps and convergence thresholds of every stage
+  Optimization_schedule schedule;
+  /// optional reference surface (model coordinates); default: the boundary of `original`
+  const std::vector<Vec3>* reference_points = nullptr;
+  const std::vector<Tri>* reference_triangles = nullptr;
+};
+
+template <class Visitor>
+class Hex_mesh_quality_improver
+{
+  typedef std::chrono::steady_clock Clock; // for the reports' seconds only
+
+  /// what the stages share: the normalised mesh, its reference, target
+  /// surface, guard, the boundary vertices' homes, and the surface error of
+  /// the current state when known
+  struct Run_state
+  {
+    Run_state(Hex_mesh_arrays& m, Optimization_result& r) : mesh(m), res(r) {}
+    Hex_mesh_arrays& mesh;
+    Optimization_result& res;
+    std::unique_ptr<Hex_mesh_topology> topo;
+    Normalization nz;
+    /// the reference, model coordinates, cut along (0, 2) as the surface error is measured
+    Triangle_surface reference;
+    /// the surface tolerance in normalised mesh units
+    double tolerance = 0.;
+    double diagonal = 0.;
+    std::unique_ptr<Target_surface> ts;
+    std::unique_ptr<Ideal_angles> ideal;
+    std::unique_ptr<Surface_guard> guard;
+    /// home of each boundary vertex on the reference
+    std::vector<Vec3> home;
+    /// surface error of the current state (it depends on the boundary
+    /// vertices only and is measured only when they moved); negative: unknown
+    double current_error = -1.;
+    /// whether `current_error` may be an upper bound (`measure_error_since`)
+    /// rather than a measure: the result's error is then measured at the end
+    bool error_may_be_bound = false;
+    /// what the turns and the final smoothing may take the error to
+    double error_bound = 0.;
+  };
+
+public:
+  Hex_mesh_quality_improver(const Quality_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
+
+  /// Improves `mesh` in place. `original` is the mesh the surface error is
+  /// measured against when no reference surface is given (the untangler's
+  /// input in the whole pipeline; `mesh` itself otherwise).
+  Optimization_result run(Hex_mesh_arrays& mesh, const Hex_mesh_arrays& original)
+  {
+    const auto start = Clock::now();
+    Optimization_result res;
+    const Hex_mesh_arrays input = mesh;
+    const Quality_statistics q0 = quality_statistics(mesh);
+    res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
+
+    Run_state st(mesh, res);
+    set_up(st, original);
+    if(m_s.pull_back && q0.inverted == 0 && !stopped()) pull_back_stage(st);
+    if(!stopped()) surface_guard_set_up(st, original);
+    if(!stopped() && restoration_stage(st) > 0) st.current_error = -1.;
+    if(!stopped()) msj_stages_with_retry(st);
+    if(m_s.asj_smoothing && !stopped()) turns(st);
+    if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
+
+    for(Vec3& p : mesh.points) p = st.nz.undo(p);
+
+    // ---- never make the mesh worse
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
+    res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
+    res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
+                          ? st.current_error
+                          : relative_surface_error(mesh, st.reference);
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
+    res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
+    res.seconds = seconds_since(start);
+    return res;
+  }
+
+private:
+  bool stopped() const { return time_limit_reached(m_s.time_limit); }
+
+  /// the MSJ the stages aim at: the target, but never above
+  /// `Optimization_schedule::excellent_msj`
+  double aimed_msj() const { return (std::min)(m_s.target_msj, m_s.schedule.excellent_msj); }
+
+  /// the reference surface, the normalisation and Ω_t
+  void set_up(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    // reference surface (model coordinates): for the guard cut along (0, 2)
+    // as the surface error is measured; for Ω_t both ways
+    if(user_reference())
+    {
+      m_guard_points = m_target_points = *m_s.reference_points;
+      m_guard_tris = m_target_tris = *m_s.reference_triangles;
+    }
+    else
+    {
+      const Hex_mesh_boundary ob = extract_boundary(original);
+      triangulate_boundary(ob, original.points, Quad_split::diagonal_02, m_guard_points, m_guard_tris);
+      triangulate_boundary(ob, original.points, Quad_split::both_diagonals, m_target_points, m_target_tris);
+    }
+    {
+      std::vector<Triangle_surface::Vertex_index> vi;
+      for(const Vec3& p : m_guard_points) vi.push_back(st.reference.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+      for(const Tri& t : m_guard_tris) st.reference.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+    }
+    st.diagonal = internal::diagonal(bbox_of(st.reference));
+
+    // normalise
+    st.topo.reset(new Hex_mesh_topology(st.mesh));
+    st.nz = normalization(*st.topo, st.mesh.points);
+    for(Vec3& p : st.mesh.points) p = st.nz.apply(p);
+    for(Vec3& p : m_guard_points) p = st.nz.apply(p);
+    for(Vec3& p : m_target_points) p = st.nz.apply(p);
+    st.tolerance = m_s.surface_tolerance * st.diagonal * st.nz.scale;
+
+    Target_surface_parameters tsp;
+    tsp.feature_angle = m_s.sharp_angle;
+    // Ω_t = the boundary projected onto the reference, not smoothed: the
+    // untangler smoothed what needed it, and smoothing a valid boundary only
+    // moves the anchors of its corners and feature vertices away from it
+    tsp.smoothing_iterations = 0;
+    st.ts.reset(new Target_surface(st.mesh, m_target_points, m_target_tris, tsp));
+  }
+
+  bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }
+
+  /// the home of each boundary vertex on the reference (its input position
+  /// when the reference is the input's boundary, its projection otherwise)
+  /// and the surface guard every later stage shares
+  void surface_guard_set_up(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    st.home.assign(st.mesh.points.size(), Vec3{0., 0., 0.});
+    for(std::size_t v : st.ts->boundary().vertices)
+    {
+      if(user_reference()) st.ts->closest_on_reference(st.mesh.points[v], st.home[v]);
+      else st.home[v] = st.nz.apply(original.points[v]);
+    }
+    // what the boundary must keep covering: the input's boundary itself, or
+    // (with a user's reference, which the guard checks directly) the
+    // boundary as it is now
+    const std::vector<Vec3> guard_start = user_reference() ? st.mesh.points : st.home;
+    st.guard.reset(new Surface_guard(st.ts->boundary(), m_guard_points, m_guard_tris, guard_start));
+  }
+
+  /// measures the surface error of the current state
+  double measure_error(Run_state& st) const
+  {
+    st.current_error = scaled_error(st.mesh, st.reference, st.nz);
+    return st.current_error;
+  }
+
+  /// Measures the surface error after a change from `before`, whose error
+  /// was `error_before` (< 0: unknown, measured in full): only the quads
+  /// that moved and the reference near them are measured
+  /// (`surface_error_after_change`). The value is an upper bound, exact
+  /// whenever the error grew beyond `error_before`.
+  double measure_error_since(Run_state& st, const std::vector<Vec3>& before, double error_before) const
+  {
+    if(error_before < 0.) return measure_error(st);
+    const Normalization& nz = st.nz;
+    st.current_error =
+      surface_error_after_change(st.ts->boundary(), before, st.mesh.points, st.reference, error_before * st.diagonal,
+                                 [&nz](const Vec3& p) { return nz.undo(p); }) /
+      st.diagonal;
+    st.error_may_be_bound = true;
+    return st.current_error;
+  }
+
+  /// The MSJ stages, their guard keeping a margin (`msj_guard_margin` of the
+  /// tolerance, fine sampling from `msj_dense_sampling`), then the
+  /// restoration at the MSJ reached. If the error measured after them is
+  /// above the tolerance, they run again from where they started with a
+  /// wider margin (`msj_guard_retry_margin`), and the run with the lower
+  /// error is kept. The margin, the fine sampling and the second run apply
+  /// only when the error before the stages is within the tolerance (after an
+  /// untangling that left the boundary off the surface they cannot cause an
+  /// excess, and only hold the stages back). See the manual.
+  void msj_stages_with_retry(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    if(st.current_error < 0.) measure_error(st);
+    const bool within_before = st.current_error <= m_s.surface_tolerance;
+    if(within_before) st.guard->set_dense_sampling_above(sc.msj_dense_sampling * st.tolerance);
+    auto run_msj_stages = [&](double margin) {
+      msj_stages(st, margin * st.tolerance);
+      restoration_stage(st);
+      measure_error(st);
+    };
+    const std::vector<Vec3> before = st.mesh.points;
+    run_msj_stages(within_before ? sc.msj_guard_margin : 1.);
+    if(within_before && st.current_error > m_s.surface_tolerance && !stopped())
+    {
+      const std::vector<Vec3> first = st.mesh.points;
+      const double first_error = st.current_error;
+      report_check(st, "the MSJ stages", "surface error " + std::to_string(st.current_error) +
+                    " above the tolerance; run again with the guard at " + std::to_string(sc.msj_guard_retry_margin) +
+                    " of it (the first run is kept if the second is not better)");
+      st.mesh.points = before;
+      run_msj_stages(sc.msj_guard_retry_margin);
+      if(st.current_error > first_error || stopped())
+      {
+        st.mesh.points = first;
+        st.current_error = first_error;
+        report_check(st, "the second run of the MSJ stages", stopped() ? "time limit reached" : "surface error not lower");
+      }
+    }
+  }
+
+  /// What the surface error may still grow by (mesh units, × `factor`): an
+  /// ASJ move whose quads stay that close to the boundary as its stage
+  /// received it skips the guard's AABB queries
+  /// (`Asj_smoothing_settings::start_deviation_budget`); 0 while the error
+  /// of the current state is unknown.
+  double error_budget(const Run_state& st, double factor) const
+  {
+    return st.current_error >= 0.
+             ? factor * (std::max)(0., st.error_bound - st.current_error) * st.diagonal * st.nz.scale
+             : 0.;
+  }
+
+  /// Checks the surface error after a turn or the final smoothing: within
+  /// `error_bound` it is kept; otherwise (`restore`) the surface restoration
+  /// runs first, and if the error is still above, or the time limit was
+  /// reached before the check, the state `saved` (of error `saved_error`) is
+  /// put back and a "check" stage says why.
+  bool within_bound(Run_state& st, const std::vector<Vec3>& saved, double saved_error, const char* what, bool restore)
+  {
+    double e = -1.;
+    if(!stopped())
+    {
+      e = measure_error_since(st, saved, saved_error);
+      if(e <= st.error_bound) return true;
+      if(restore && !stopped())
+      {
+        restoration_stage(st);
+        e = measure_error(st);
+        if(e <= st.error_bound && !stopped()) return true;
+      }
+    }
+    st.mesh.points = saved;
+    st.current_error = saved_error;
+    std::ostringstream d;
+    if(e < 0. || stopped()) d << "time limit reached before its surface check";
+    else d << "surface error " << e << " above " << st.error_bound;
+    report_check(st, what, d.str());
+    return false;
+  }
+
+  /// ASJ smoothing and max-min smoothing in turn while the MSJ rises: the
+  /// ASJ pass reshapes the neighbourhood of the worst elements, which frees
+  /// elements the max-min smoothing had stalled on. A turn that leaves the
+  /// surface error above max(tolerance, the error before the turns) gets a
+  /// restoration, and is undone if that does not bring it back (the guard
+  /// is then halved); so is a turn with a lowered floor that ends below the
+  /// MSJ it started from (the drop is then halved). The first turn that
+  /// gains less than `turn_min_gain` lowers the floor of the ASJ passes; from
+  /// then on, `turn_patience` turns in a row that are undone or gain too
+  /// little end the turns, as do `max_turns`, a guard below
+  /// `min_turn_guard` or a drop below `min_turn_floor_drop`.
+  void turns(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    // from here on the error bound is strict (a turn over it is undone): the
+    // guard samples the quads that come near the tolerance on a fine grid too
+    st.guard->set_dense_sampling_above(sc.turn_dense_sampling * st.tolerance);
+    if(st.current_error < 0.) measure_error(st);
+    st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
+    double drop = 0.;
+    int unproductive = 0; // turns in a row undone or gaining too little
+    m_turn_guard = sc.turn_guard;
+    for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
+    {
+      const std::vector<Vec3> saved = st.mesh.points;
+      const double saved_error = st.current_error;
+      const double before = quality_statistics(st.mesh).msj;
+      if(before >= aimed_msj()) break;
+      Asj_smoothing_settings one_focused_pass;
+      one_focused_pass.max_passes = 1;
+      one_focused_pass.focus_below = before + sc.turn_focus_band;
+      one_focused_pass.order = Asj_smoothing_settings::Visit_order::index_blocks;
+      one_focused_pass.block_size = sc.turn_block_size;
+      one_focused_pass.start_deviation_budget = error_budget(st, m_turn_guard);
+      asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drop);
+      max_min_stage(st, m_turn_guard * st.tolerance);
+      const double after = quality_statistics(st.mesh).msj;
+      bool productive = true;
+      if(drop > 0. && after < before)
+      {
+        st.mesh.points = saved;
+        st.current_error = saved_error;
+        report_check(st, "the last ASJ + max-min turn with a lowered floor",
+                     "MSJ " + std::to_string(after) + " below " + std::to_string(before));
+        productive = false;
+        drop *= 0.5;
+        if(drop < sc.min_turn_floor_drop) break;
+      }
+      else if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
+      {
+        productive = false;
+        m_turn_guard *= 0.5;
+        if(m_turn_guard < sc.min_turn_guard) break;
+      }
+      else if(after < before + sc.turn_min_gain)
+      {
+        productive = false;
+        if(drop == 0.)
+        {
+          drop = sc.turn_floor_drop; // the first stall lowers the floor
+          continue;
+        }
+      }
+      if(productive) unproductive = 0;
+      else if(++unproductive >= sc.turn_patience) break;
+    }
+  }
+
+  /// The final ASJ smoothing, never below the MSJ reached, its guard as the
+  /// turns'. If its surface check undoes it, it runs again with the boundary
+  /// fixed, which cannot change the surface error (the restoration would
+  /// move the boundary back and lose much of the ASJ gained).
+  void final_asj_smoothing(Run_state& st)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    Asj_smoothing_settings settings;
+    settings.max_passes = sc.asj_passes;
+    settings.min_asj_gain = sc.asj_min_gain;
+    if(sc.final_asj_moves_boundary)
+    {
+      if(st.current_error < 0.) measure_error(st);
+      st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
+      const std::vector<Vec3> saved = st.mesh.points;
+      const double saved_error = st.current_error;
+      settings.start_deviation_budget = error_budget(st, m_turn_guard);
+      asj_stage(st, m_turn_guard * st.tolerance, settings);
+      if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
+    }
+    const double error = st.current_error;
+    settings.move_boundary = false;
+    settings.start_deviation_budget = 0.;
+    asj_stage(st, m_turn_guard * st.tolerance, settings);
+    st.current_error = error; // the boundary did not move
+  }
+
+  /// a "check" stage: `what` was undone, and why
+  void report_check(Run_state& st, const std::string& what, const std::string& why)
+  {
+    Stage_report sr;
+    sr.name = "check";
+    const Quality_statistics q = quality_statistics(st.mesh);
+    sr.inverted_before = sr.inverted_after = q.inverted;
+    sr.msj_after = q.msj;
+    sr.details = what + " undone: " + why;
+    st.res.stages.push_back(sr);
+    m_visitor.stage_started(sr.name, 0);
+    m_visitor.stage_finished(sr);
+  }
+
+  /// an ASJ smoothing; `as` brings the caller's choices (passes, focus,
+  /// fixed boundary), the floor (the MSJ − `floor_drop`) and guard are set here
+  void asj_stage(Run_state& st, double guard_tolerance, Asj_smoothing_settings as, double floor_drop = 0.)
+  {
+    const auto t = Clock::now();
+    const Quality_statistics q = quality_statistics(st.mesh);
+    m_visitor.stage_started("asj", 0);
+    as.min_sj_floor = q.msj - floor_drop;
+    as.max_surface_deviation = guard_tolerance;
+    const Surface_guard& guard = *st.guard;
+    as.guard = &guard;
+    as.time_limit = m_s.time_limit;
+    const Asj_smoothing_report ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
+    std::ostringstream d;
+    d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << " in " << ar.passes << " passes, MSJ kept at "
+      << ar.msj_after;
+    report_stage(st, "asj", q, t, ar.passes, d.str());
+  }
+
+  /// the max-min smoothing settings of the schedule, toward `target`
+  Worst_element_smoothing_settings max_min_settings(double target, double guard_tolerance) const
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    Worst_element_smoothing_settings ws;
+    ws.target_sj = target;
+    ws.max_surface_deviation = guard_tolerance;
+    ws.max_sweeps = sc.max_min_sweeps;
+    ws.patience = sc.max_min_patience;
+    ws.min_gain = sc.max_min_min_gain;
+    ws.time_limit = m_s.time_limit;
+    return ws;
+  }
+
+  /// The max-min smoothing of the turns: toward the target itself rather
+  /// than the next staged one, so that the elements within the band above the
+  /// MSJ are worked on however close the next stage's value is (bunny_in: a
+  /// turn's "msj>=0.5" stalled at 0.4996 on the few elements below 0.5 and
+  /// ended the turns; aimed at 1 the same turn reached 0.541).
+  void max_min_stage(Run_state& st, double guard_tolerance)
+  {
+    const auto t = Clock::now();
+    const Quality_statistics q = quality_statistics(st.mesh);
+    m_visitor.stage_started("max-min", count_below(st.mesh, q.msj + 0.05));
+    Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
+    const Worst_element_smoothing_report wr =
+      polish.run(st.mesh.points, max_min_settings(aimed_msj(), guard_tolerance));
+    std::ostringstream d;
+    d << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << wr.msj_before << " -> " << wr.msj_after;
+    report_stage(st, "max-min", q, t, wr.sweeps, d.str());
+  }
+
+  /// completes the report of a stage that inverts nothing and hands it to the visitor
+  void report_stage(Run_state& st, const std::string& name, const Quality_statistics& before, Clock::time_point t,
+                    int rounds, const std::string& details)
+  {
+    Stage_report sr;
+    sr.name = name;
+    const Quality_statistics after = quality_statistics(st.mesh);
+    sr.inverted_before = before.inverted;
+    sr.inverted_after = after.inverted;
+    sr.msj_after = after.msj;
+    sr.seconds = seconds_since(t);
+    sr.rounds = rounds;
+    sr.details = details;
+    st.res.stages.push_back(sr);
+    m_visitor.stage_finished(sr);
+  }
+
+  /// the surface restoration; returns the number of boundary moves it made
+  std::size_t restoration_stage(Run_state& st)
+  {
+    if(!m_s.schedule.restoration) return 0;
+    const auto t = Clock::now();
+    m_visitor.stage_started("surface restoration", 0);
+    Boundary_restoration_settings bs;
+    const Quality_statistics q = quality_statistics(st.mesh);
+    bs.floor = q.msj;
+    bs.home_distance = 1e-9; // mesh units, normalised: a mean edge is 0.025
+    bs.max_sweeps = m_s.schedule.restoration_sweeps;
+    bs.time_limit = m_s.time_limit;
+    const Boundary_restoration_report br =
+      restore_boundary(*st.topo, *st.guard, st.ts->boundary().vertices, st.home, st.mesh.points, bs);
+    std::ostringstream d;
+    d << br.moves << " boundary moves toward the reference in " << br.sweeps
+      << " sweeps, largest distance of a boundary vertex to its home " << br.distance_before / 0.025 << " -> "
+      << br.distance_after / 0.025 << " mean edge lengths";
+    report_stage(st, "surface restoration", q, t, br.sweeps, d.str());
+    return br.moves;
+  }
+
+  static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+  /// surface error of the normalised mesh against the model-space reference
+  static double scaled_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference, const Normalization& nz)
+  {
+    Hex_mesh_arrays m = mesh;
+    for(Vec3& p : m.points) p = nz.undo(p);
+    return relative_surface_error(m, reference);
+  }
+
+  /// The pull-back, when the boundary is off the target surface by more
+  /// than the tolerance, kept only if it lowers the surface error: Ω_t's
+  /// anchors are projections of the boundary as the untangler left it, and
+  /// on a mesh whose boundary slid along a curved surface, or whose feature
+  /// classification is noisy, reaching them can raise the Hausdorff
+  /// distance to the reference (impeller_stresstest: 0.0027 → 0.018).
+  void pull_back_stage(Run_state& st)
+  {
+    const double error_before = measure_error(st);
+    if(error_before <= m_s.surface_tolerance) return;
+    const auto t = Clock::now();
+    std::vector<Boundary_constraint> bc;
+    st.ts->update_constraints(st.mesh.points, bc);
+    double far = 0.;
+    for(std::size_t v : st.ts->boundary().vertices) far = (std::max)(far, norm(st.mesh.points[v] - bc[v].anchor));
+    if(!(far > 0.01 * 0.025)) return;
+    m_visitor.stage_started("pull-back", 0);
+    Pull_back_settings ps;
+    ps.max_iterations = m_s.schedule.pull_back_iterations;
+    ps.time_limit = m_s.time_limit;
+    const std::vector<Vec3> before = st.mesh.points;
+    const Pull_back_report pr = pull_back_to_target(*st.topo, *st.ts, st.mesh.points, ps);
+    const double error_after = measure_error(st);
+    const bool kept = error_after < error_before;
+    if(!kept)
+    {
+      st.mesh.points = before;
+      st.current_error = error_before;
+    }
+    Stage_report sr;
+    sr.name = "pull-back";
+    sr.msj_after = quality_statistics(st.mesh).msj;
+    sr.seconds = seconds_since(t);
+    sr.rounds = pr.iterations;
+    std::ostringstream d;
+    d << "largest distance of a boundary vertex to the target surface " << pr.distance_before / 0.025 << " -> "
+      << pr.distance_after / 0.025 << " mean edge lengths"
+      << (pr.reached ? "" : " (target not reached: the best valid state is kept)") << "; surface error "
+      << error_before << " -> " << error_after
+      << (kept ? "" : ": not lower, the mesh before the pull-back is kept");
+    sr.details = d.str();
+    st.res.stages.push_back(sr);
+    m_visitor.stage_finished(sr);
+  }
+
+  /// Stages "msj>=t" for t = 0 (only if something is inverted), then
+  /// `msj_stage_step`, 2 × that, … up to the target, each on what is below
+  /// t: max-min smoothing first (one vertex at a time, cheap: bunny_in MSJ
+  /// 0 → 0.4 in 0.5 s, where the edge-angle optimiser took 15 s), then, while
+  /// it falls short of t, edge-angle passes (Algorithm 1 with α, β ≥ 500,
+  /// rollback under the stage's starting MSJ or beyond the guard), the
+  /// boundary projected back, and max-min again, while a pass raises the MSJ
+  /// by at least `msj_stage_min_gain`. A stage that does not reach its t
+  /// ends the schedule: the MSJ is then as high as this method gets it.
+  void msj_stages(Run_state& st, double guard_tolerance)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const double target = aimed_msj();
+    double msj = quality_statistics(st.mesh).msj;
+    for(int k = 0; !stopped(); ++k)
+    {
+      double t = k * sc.msj_stage_step;
+      if(t > target) t = target;
+      if(msj > t && t < target) continue;
+      const auto t0 = Clock::now();
+      std::ostringstream name;
+      name << "msj>=" << t;
+      m_visitor.stage_started(name.str(), count_below(st.mesh, t));
+      Stage_report sr;
+      sr.name = name.str();
+      sr.inverted_before = quality_statistics(st.mesh).inverted;
+      std::ostringstream d;
+      Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
+      const Worst_element_smoothing_settings ws = max_min_settings(t, guard_tolerance);
+      auto smooth = [&] {
+        if(!sc.msj_stage_max_min)
+        {
+          msj = quality_statistics(st.mesh).msj;
+          return;
+        }
+        const Worst_element_smoothing_report wr = polish.run(st.mesh.points, ws);
+        const double now = quality_statistics(st.mesh).msj;
+        d << "max-min smoothing: " << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << msj << " -> " << now;
+        msj = now;
+      };
+      smooth();
+      // (even for a handful of elements: on fertility_gregson11 a pass on
+      // the last element below 0.7 did not fix it, but the max-min smoothing
+      // after it went from 0.691 to 0.697)
+      for(int pass = 0; msj < t && pass < sc.msj_stage_edge_angle_passes && !stopped(); ++pass)
+      {
+        const double msj_pass = msj;
+        const Local_optimizer_report r = edge_angle_pass(st, t, msj, guard_tolerance, sr.name);
+        sr.rounds += r.rounds;
+        const std::size_t projected = project_boundary(st, guard_tolerance, msj);
+        d << "; edge-angle: below " << t << " " << r.bad_before << " -> " << r.bad_after << " in " << r.rounds
+          << " rounds, " << projected << " boundary vertices projected back; ";
+        smooth();
+        // on while the pass raises the MSJ or frees elements (Algorithm 1
+        // clears the elements below t one region at a time: the MSJ rises
+        // only when the last is freed)
+        if(msj - msj_pass < sc.msj_stage_min_gain && r.bad_after >= r.bad_before) break;
+      }
+      sr.inverted_after = quality_statistics(st.mesh).inverted;
+      sr.msj_after = msj;
+      sr.seconds = seconds_since(t0);
+      sr.details = d.str();
+      st.res.stages.push_back(sr);
+      m_visitor.stage_finished(sr);
+      if(msj < t || t >= target) break;
+    }
+  }
+
+  /// one pass of the edge-angle local optimiser toward `t`, no element below `floor`
+  Local_optimizer_report edge_angle_pass(Run_state& st, double t, double floor, double guard_tolerance,
+                                         const std::string& stage)
+  {
+    const Target_surface& ts = *st.ts;
+    const Surface_guard& guard = *st.guard;
+    // the ideal angles, when a pass first needs them (their boundary part,
+    // the dihedral angles of Ω_t, does not change: the same whenever made;
+    // over a whole 1M-hex mesh they take seconds)
+    if(!st.ideal) st.ideal.reset(new Ideal_angles(ideal_angles_on_target(*st.topo, ts, st.mesh.points)));
+    Local_optimizer opt(*st.topo, *st.ideal,
+                        [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
+                          ts.update_constraints(p, bc);
+                        },
+                        ts.mean_boundary_edge_length());
+    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished(stage, r, left); };
+    opt.accept_step = [&](const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& p) {
+      return surface_kept(ts.boundary(), guard, guard_tolerance, region, before, p);
+    };
+    Local_optimizer_settings ls;
+    ls.target_sj = t;
+    ls.alpha = m_s.alpha; ls.beta = m_s.beta;
+    ls.min_alpha_beta = m_s.min_alpha_beta;
+    ls.xi_start = m_s.xi;
+    ls.local_iterations = m_s.local_iterations;
+    ls.max_rounds = m_s.schedule.msj_stage_rounds;
+    ls.time_limit = m_s.time_limit;
+    ls.min_sj_floor = floor;
+    return opt.run(st.mesh.points, ls);
+  }
+
+  /// whether a step of the edge-angle optimiser on `region` (free vertices
+  /// at `before`, now at `points`) keeps every boundary vertex within the
+  /// tolerance, or at least no further from the reference than it was
+  static bool surface_kept(const Hex_mesh_boundary& boundary, const Surface_guard& guard, double tolerance,
+                           const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& points)
+  {
+    std::vector<std::pair<std::size_t, Surface_deviation> > over; // (free index, deviation after)
+    for(std::size_t i = 0; i < region.free_vertices.size(); ++i)
+    {
+      const std::size_t v = region.free_vertices[i];
+      if(!boundary.is_boundary_vertex(v)) continue;
+      const Surface_deviation d = guard.local_deviations(points, v, points[v]);
+      if(d.max() > tolerance) over.push_back({i, d});
+    }
+    if(over.empty()) return true;
+    bool ok = true;
+    std::vector<Vec3> after(region.free_vertices.size());
+    for(std::size_t i = 0; i < after.size(); ++i)
+    {
+      after[i] = points[region.free_vertices[i]];
+      points[region.free_vertices[i]] = before[i];
+    }
+    for(const auto& o : over)
+    {
+      const std::size_t v = region.free_vertices[o.first];
+      if(!o.second.within(guard.bound_at(points, v, points[v], tolerance))) { ok = false; break; }
+    }
+    for(std::size_t i = 0; i < after.size(); ++i) points[region.free_vertices[i]] = after[i];
+    return ok;
+  }
+
+  /// projects boundary vertices onto their anchors, each only if no hex
+  /// around it falls below `floor` and the guard allows it; returns how many
+  std::size_t project_boundary(Run_state& st, double tolerance, double floor) const
+  {
+    const Target_surface& ts = *st.ts;
+    const Surface_guard& guard = *st.guard;
+    std::vector<Vec3>& points = st.mesh.points;
+    std::size_t n = 0;
+    const Worst_element_smoothing probe(*st.topo, &ts, nullptr);
+    for(std::size_t v : ts.boundary().vertices)
+    {
+      const Vec3 a = ts.constraint_at(v, points[v]).anchor;
+      if(squared_norm(a - points[v]) == 0.) continue;
+      const double now = probe.local_minimum(points, v, points[v]);
+      if(!probe.keeps_floor(points, v, a, floor, now)) continue;
+      const Surface_deviation allowed = guard.bound_at(points, v, points[v], tolerance);
+      if(!guard.allows(points, v, a, allowed)) continue;
+      points[v] = a;
+      ++n;
+    }
+    return n;
+  }
+
+  static std::size_t count_below(const Hex_mesh_arrays& m, double t)
+  {
+    std::size_t n = 0;
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= t) ++n;
+    return n;
+  }
+
+  Quality_settings m_s;
+  Visitor& m_visitor;
+  /// the reference surface in normalised mesh units: for the guard, cut
+  /// along (0, 2) as the surface error is measured; for Ω_t both ways
+  std::vector<Vec3> m_guard_points, m_target_points;
+  std::vector<Tri> m_guard_tris, m_target_tris;
+  /// the guard of the turns and of the final smoothing, relative to the tolerance
+  double m_turn_guard = 0.7;
+};
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_QUALITY_IMPROVER_H

@@ -1,0 +1,441 @@
+// Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Package: Hexahedral_mesh_optimization
+
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_UNTANGLER_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_UNTANGLER_H
+
+// The untangling pipeline on flat arrays (Sections 3.1 and 3.2):
+//   1. normalise the mesh (mean edge length 0.025, about its centroid) and
+//      the reference surface with it, so that α = β = 1000 mean the same on
+//      every model;
+//   2. target surface Ω_t and feature classification (Target_surface.h);
+//      ideal angles from the connectivity, with the measured dihedral angle
+//      of Ω_t on feature edges (Ideal_angles.h);
+//   3. stage "interior": the foldover-free energy (Barrier_untangler.h) on
+//      regions around the inverted hexes with every boundary vertex fixed —
+//      what the interior alone can untangle is untangled without moving the
+//      surface. Measured: cap_in 50 → 0 inverted in 0.55 s,
+//      impeller_stresstest 8857 → 0 in 0.9 s, block_in 31 → 0, bust_in
+//      30 → 2; surface error < 0.0001 of the diagonal where it clears all
+//      (before, through the edge-angle optimiser with α, β relaxed and the
+//      barrier with a soft boundary: cap_in 0.0085, impeller 0.0019 — a
+//      vertex of cap_in ended 3 mean edges from its home, and the quality
+//      stages' surface guard then missed the crease it had uncovered; the
+//      whole pipeline ended at 0.0065 and 0.0010 for bounds of 0.0053 and
+//      0.0005);
+//   4. stage "edge-angle": the local optimiser of Algorithm 1
+//      (Local_optimizer.h) on what is left;
+//   5. stage "barrier": on what is left, the foldover-free energy
+//      (Barrier_untangler.h), region by region, each result kept only if the
+//      region's inverted count does not rise;
+//   6. stage "surface": the boundary pulled back toward the target surface
+//      by the same energy with a true barrier (nothing can invert), see
+//      pull_back_to_surface();
+//   7. scale back; if the result is worse than the input (more inverted, or
+//      as many with a lower MSJ), the input positions are kept.
+
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Barrier_untangler.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Local_optimizer.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_schedule.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_setup.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+namespace CGAL {
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+struct Untangle_settings
+{
+  double sharp_angle = 165.;
+  double alpha = 1000., beta = 1000.;
+  double xi = 0.6;
+  bool relax_surface = true;
+  int local_iterations = 20;
+  int max_rounds = 60;
+  bool barrier_fallback = true;
+  /// the run's hard stop (null: none); it is not the schedule's business
+  const Time_limit* time_limit = nullptr;
+  /// work caps and convergence thresholds of every stage
+  Optimization_schedule schedule;
+  /// optional reference surface (triangle soup, model coordinates)
+  const std::vector<Vec3>* reference_points = nullptr;
+  const std::vector<Tri>* reference_triangles = nullptr;
+};
+
+/// Stage "surface": pulls the boundary back toward the target surface after
+/// untangling, without inverting anything. Around the boundary vertices
+/// whose residual exceeds `tol` (normal distance to the reference for
+/// regular vertices, distance to the reference for sharp ones, distance to
+/// the anchor for corners), 2-ring regions are optimised with the
+/// foldover-free energy at ε = 0 — a true barrier, so no Jacobian frame of
+/// the region can degenerate and no hex can invert — plus the Eq. 6
+/// boundary energy, whose weight starts at 100 w0 (w0: one mean edge of
+/// displacement costs as much as one ideal frame) and grows ×10 per outer
+/// pass while the anchors are refreshed. A region's result is kept only if
+/// its largest residual did not grow and it has no more inverted hexes.
+///
+/// Why (measured, benchmark defaults): Algorithm 1 halves α and β globally
+/// until the last stuck element is freed, and by then the boundary of every
+/// region has drifted (block_in 0.0139, bust_in 0.0190, cap_in 0.0518 of
+/// the bbox diagonal). Moving boundary vertices back one at a time
+/// (backtracking toward the anchor, each accepted only if the hexes around
+/// keep SJ > 0) gained almost nothing (block 0.0135, cap 0.0468): the whole
+/// neighbourhood had moved, so the interior must move with the boundary.
+/// This pass gives block 0.0047, bust 0.0054, cap 0.0085, and raises the
+/// MSJ (block 0.002 → 0.08) since the frame energy also shapes the hexes.
+/// The sharp residual is the distance to the reference, not to Ω_t's
+/// feature polyline: on the noisy "features" of organic models the chords
+/// are off the surface, and pulling onto them moved bunny_in's boundary by
+/// half an edge (error 0.0004 → 0.0112).
+/// Returns the largest residual left.
+inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_surface& ts,
+                                   std::vector<Vec3>& points, double tol, int outer,
+                                   const Time_limit* time_limit, std::size_t* regions_done = nullptr)
+{
+  const auto& hexes = topo.hexes();
+  std::vector<Boundary_constraint> bc;
+  auto hex_sj = [&](std::size_t h) {
+    std::array<Vec3, 8> c;
+    for(int i = 0; i < 8; ++i) c[i] = points[hexes[h][i]];
+    return scaled_jacobian(c);
+  };
+  auto residual = [&](std::size_t v) {
+    const Boundary_constraint& b = bc[v];
+    const Vec3 d = points[v] - b.anchor;
+    if(b.type == Vertex_class::regular) return std::abs(dot(d, b.direction));
+    if(b.type == Vertex_class::sharp)
+    {
+      // off the surface, not off Ω_t's feature polyline (on noisy "features"
+      // of organic models the polyline's chords are off the surface: pulling
+      // onto them moved bunny_in's boundary by 0.5 edge)
+      Vec3 q;
+      ts.closest_on_reference(points[v], q);
+      return norm(points[v] - q);
+    }
+    return norm(d);
+  };
+  double worst = 0.;
+  const double w0 = 1. / (0.025 * 0.025);
+  for(int k = 0; k < outer; ++k)
+  {
+    ts.update_constraints(points, bc);
+    std::vector<char> seed(hexes.size(), 0);
+    worst = 0.;
+    for(std::size_t v : ts.boundary().vertices)
+    {
+      const double r = residual(v);
+      worst = (std::max)(worst, r);
+      if(r > tol)
+        for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c) seed[c->hex] = 1;
+    }
+    std::vector<std::size_t> seeds;
+    for(std::size_t h = 0; h < hexes.size(); ++h) if(seed[h]) seeds.push_back(h);
+    if(seeds.empty() || time_limit_reached(time_limit)) break;
+    const double w = w0 * std::pow(10., 2 + k);
+    // the regions are independent (see `for_each_region`), and so are their
+    // reads of the constraints and the reference tree (built by now)
+    std::atomic<std::size_t> done(0);
+    for_each_region(extract_local_regions(topo, seeds, 2), [&](const Local_region& region) {
+      if(time_limit_reached(time_limit)) return;
+      auto region_residual = [&] {
+        double m = 0.;
+        for(std::size_t v : region.free_vertices) if(bc[v].type != Vertex_class::interior) m = (std::max)(m, residual(v));
+        return m;
+      };
+      const double before = region_residual();
+      std::vector<Vec3> saved(region.free_vertices.size());
+      for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = points[region.free_vertices[i]];
+      Barrier_untangler b(topo, region, bc, w);
+      b.set_time_limit(time_limit);
+      std::size_t inverted_before = 0;
+      for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_before;
+      if(!b.run_injective(points, 100)) return;
+      std::size_t inverted_after = 0;
+      for(std::size_t h : region.hexes) if(is_inverted(hex_sj(h))) ++inverted_after;
+      if(region_residual() > before || inverted_after > inverted_before)
+        for(std::size_t i = 0; i < saved.size(); ++i) points[region.free_vertices[i]] = saved[i];
+      else
+        ++done;
+    });
+    if(regions_done) *regions_done += done.load();
+  }
+  ts.update_constraints(points, bc);
+  worst = 0.;
+  for(std::size_t v : ts.boundary().vertices) worst = (std::max)(worst, residual(v));
+  return worst;
+}
+
+template <class Visitor>
+class Hex_mesh_untangler
+{
+  typedef std::chrono::steady_clock Clock; // for the reports' seconds only
+
+public:
+  Hex_mesh_untangler(const Untangle_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
+
+  /// Untangles `mesh` in place. `measure_surface_error`: whether the result
+  /// gets the surface error (the quality pipeline measures it itself).
+  Optimization_result run(Hex_mesh_arrays& mesh, bool measure_surface_error = true)
+  {
+    const auto start = Clock::now();
+    Optimization_result res;
+    const Hex_mesh_arrays input = mesh;
+    const Quality_statistics q0 = quality_statistics(mesh);
+    res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
+
+    const Hex_mesh_topology topo(mesh);
+    const Normalization nz = normalization(topo, mesh.points);
+    for(Vec3& p : mesh.points) p = nz.apply(p);
+
+    Target_surface_parameters tsp;
+    tsp.feature_angle = m_s.sharp_angle;
+    std::unique_ptr<Target_surface> ts;
+    if(m_s.reference_points && m_s.reference_triangles)
+    {
+      std::vector<Vec3> rp;
+      rp.reserve(m_s.reference_points->size());
+      for(const Vec3& p : *m_s.reference_points) rp.push_back(nz.apply(p));
+      ts.reset(new Target_surface(mesh, rp, *m_s.reference_triangles, tsp));
+    }
+    else
+      ts.reset(new Target_surface(mesh, tsp));
+
+    const Optimization_schedule& sc = m_s.schedule;
+    m_inverted = count_inverted(mesh); // then kept by each stage's report
+    if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
+      interior_stage(topo, ts->boundary(), mesh, res);
+    // (what the interior stage freed needs no edge-angle stage: its set-up,
+    // ideal angles and target lengths over the whole mesh, cost 5 s on a
+    // 1M-hex grid with nothing left to untangle)
+    if(m_inverted > 0 && !stopped())
+      edge_angle_stage(topo, *ts, mesh, res);
+    if(m_s.barrier_fallback && sc.barrier_stage && m_inverted > 0 && !stopped())
+      barrier_stage(topo, *ts, mesh, res);
+    if(sc.surface_stage && !stopped())
+      surface_stage(topo, *ts, mesh, res);
+
+    for(Vec3& p : mesh.points) p = nz.undo(p);
+
+    // ---- never make the mesh worse
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
+    res.success = q1.inverted == 0;
+    res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
+    res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
+    if(measure_surface_error) res.surface_error = surface_error(mesh, input);
+    res.seconds = since(start);
+    return res;
+  }
+
+private:
+  bool stopped() const { return time_limit_reached(m_s.time_limit); }
+  static double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+  /// starts the report of a stage and tells the visitor
+  Stage_report begin_stage(const std::string& name)
+  {
+    Stage_report sr;
+    sr.name = name;
+    sr.inverted_before = m_inverted;
+    m_visitor.stage_started(name, m_inverted);
+    return sr;
+  }
+
+  /// completes the report of a stage and hands it to the visitor
+  void end_stage(Stage_report& sr, const Hex_mesh_arrays& mesh, Clock::time_point t, Optimization_result& res)
+  {
+    const Quality_statistics q = quality_statistics(mesh);
+    sr.inverted_after = m_inverted = q.inverted;
+    sr.msj_after = q.msj;
+    sr.seconds = since(t);
+    res.stages.push_back(sr);
+    m_visitor.stage_finished(sr);
+  }
+
+  /// stage "interior": the barrier with the boundary fixed (see `untangle_interior`)
+  void interior_stage(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary, Hex_mesh_arrays& mesh,
+                      Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    Stage_report sr = begin_stage("interior");
+    sr.details = untangle_interior(topo, boundary, mesh);
+    sr.rounds = 1;
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "edge-angle": the local optimiser of Algorithm 1
+  void edge_angle_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                        Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    const Ideal_angles ideal = ideal_angles_on_target(topo, ts, mesh.points);
+    Local_optimizer opt(topo, ideal,
+                        [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {
+                          ts.update_constraints(p, bc);
+                        },
+                        ts.mean_boundary_edge_length());
+    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished("edge-angle", r, left); };
+    Local_optimizer_settings ls;
+    ls.alpha = m_s.alpha; ls.beta = m_s.beta; ls.xi_start = m_s.xi;
+    ls.min_alpha_beta = m_s.relax_surface ? 1. : (std::min)(m_s.alpha, m_s.beta);
+    ls.local_iterations = m_s.local_iterations;
+    ls.max_rounds = (std::min)(m_s.max_rounds, sc.edge_angle_rounds);
+    ls.time_limit = m_s.time_limit;
+    // Hand-over to the barrier stage (measured): a region of more than
+    // `edge_angle_max_region_hexes` is left to it, and so is a plateau of
+    // `edge_angle_stalled_rounds` (see the manual)
+    ls.max_region_hexes = sc.edge_angle_max_region_hexes;
+    ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
+    Stage_report sr = begin_stage("edge-angle");
+    const Local_optimizer_report r = opt.run(mesh.points, ls);
+    sr.rounds = r.rounds;
+    std::ostringstream d;
+    d << r.accepted_steps << " steps accepted, " << r.rolled_back_steps << " rolled back; alpha = "
+      << r.final_alpha << ", beta = " << r.final_beta << " at the end";
+    sr.details = d.str();
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "barrier": on what is left, the foldover-free energy with the
+  /// surface free to relax, strong first, weaker only for what is still
+  /// inverted, each time on wider regions (weights: `Optimization_schedule`)
+  void barrier_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                     Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    Stage_report sr = begin_stage("barrier");
+    const double w0 = 1. / (0.025 * 0.025);
+    std::vector<double> weights;
+    if(m_s.relax_surface) weights.assign(std::begin(sc.barrier_weights_relaxed), std::end(sc.barrier_weights_relaxed));
+    else weights.assign(std::begin(sc.barrier_weights_fixed), std::end(sc.barrier_weights_fixed));
+    for(std::size_t pass = 0; pass < weights.size() && !stopped(); ++pass)
+    {
+      const std::vector<std::size_t> bad = inverted_hexes(mesh);
+      if(bad.empty()) break;
+      ++sr.rounds;
+      std::vector<Boundary_constraint> bc;
+      ts.update_constraints(mesh.points, bc);
+      for_each_region(extract_local_regions(topo, bad, 2 + int(pass)), [&](const Local_region& region) {
+        if(stopped()) return;
+        Barrier_untangler b(topo, region, bc, weights[pass] * w0);
+        b.set_sliding_weight(sc.barrier_sliding_fraction * weights[pass] * w0);
+        b.set_time_limit(m_s.time_limit);
+        run_on_region(b, region, mesh, false);
+      });
+      m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
+    }
+    sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "surface": the boundary back toward the target surface
+  void surface_stage(const Hex_mesh_topology& topo, const Target_surface& ts, Hex_mesh_arrays& mesh,
+                     Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    const Optimization_schedule& sc = m_s.schedule;
+    Stage_report sr = begin_stage("surface");
+    std::size_t regions = 0;
+    const double worst = pull_back_to_surface(topo, ts, mesh.points, sc.surface_residual_edges * 0.025,
+                                              sc.surface_passes, m_s.time_limit, &regions);
+    sr.details = std::to_string(regions) + " regions, largest residual " + std::to_string(worst / 0.025) + " edges";
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// The foldover-free energy on regions of 3 rings around the inverted
+  /// hexes with every boundary vertex fixed: whatever the interior alone can
+  /// untangle is untangled without moving the surface. A region's result is
+  /// kept only if it lowers its inverted count: where the interior cannot
+  /// help, the next stages start from the input as it was.
+  /// Returns what it did, for the stage's report.
+  std::string untangle_interior(const Hex_mesh_topology& topo, const Hex_mesh_boundary& boundary,
+                                Hex_mesh_arrays& mesh) const
+  {
+    const std::vector<Boundary_constraint> no_constraints(mesh.points.size());
+    std::vector<Local_region> regions = extract_local_regions(topo, inverted_hexes(mesh), m_s.schedule.interior_rings);
+    for(Local_region& region : regions)
+    {
+      std::vector<std::size_t> interior;
+      for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
+      region.free_vertices.swap(interior);
+    }
+    for_each_region(regions, [&](const Local_region& region) {
+      if(region.free_vertices.empty() || stopped()) return;
+      Barrier_untangler b(topo, region, no_constraints, 0.);
+      b.set_time_limit(m_s.time_limit);
+      run_on_region(b, region, mesh, true);
+    });
+    std::size_t largest = 0;
+    for(const Local_region& region : regions) largest = (std::max)(largest, region.hexes.size());
+    std::ostringstream d;
+    d << "foldover-free energy, interior vertices only; " << regions.size() << " regions, the largest of "
+      << largest << " hexes";
+    return d.str();
+  }
+
+  /// Untangling by `b` on `region`, undone unless the region's inverted
+  /// count falls (`must_fall`) or at least does not rise; nothing is done
+  /// on a region with nothing inverted.
+  static void run_on_region(Barrier_untangler& b, const Local_region& region, Hex_mesh_arrays& mesh, bool must_fall)
+  {
+    auto count = [&] {
+      std::size_t n = 0;
+      for(std::size_t h : region.hexes) if(is_inverted(scaled_jacobian(mesh, h))) ++n;
+      return n;
+    };
+    const std::size_t before = count();
+    if(before == 0) return;
+    std::vector<Vec3> saved(region.free_vertices.size());
+    for(std::size_t i = 0; i < saved.size(); ++i) saved[i] = mesh.points[region.free_vertices[i]];
+    b.run(mesh.points);
+    const std::size_t after = count();
+    if(must_fall ? after >= before : after > before)
+      for(std::size_t i = 0; i < saved.size(); ++i) mesh.points[region.free_vertices[i]] = saved[i];
+  }
+
+  static std::vector<std::size_t> inverted_hexes(const Hex_mesh_arrays& m)
+  {
+    std::vector<std::size_t> bad;
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(is_inverted(scaled_jacobian(m, h))) bad.push_back(h);
+    return bad;
+  }
+
+  static std::size_t count_inverted(const Hex_mesh_arrays& m) { return inverted_hexes(m).size(); }
+
+  double surface_error(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input) const
+  {
+    if(m_s.reference_points && m_s.reference_triangles)
+    {
+      Triangle_surface ref;
+      std::vector<Triangle_surface::Vertex_index> vi;
+      for(const Vec3& p : *m_s.reference_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+      for(const Tri& t : *m_s.reference_triangles) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+      return relative_surface_error(mesh, ref);
+    }
+    return relative_surface_error(mesh, input);
+  }
+
+  Untangle_settings m_s;
+  Visitor& m_visitor;
+  /// the inverted count of the current state, from the last count or stage report
+  std::size_t m_inverted = 0;
+};
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+} // namespace CGAL
+
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_UNTANGLER_H
