@@ -484,6 +484,48 @@ void test_exp_minus()
 
 } // namespace
 
+// The reactivation threshold: a vertex whose visit gained at most
+// `min_reactivating_gain` makes no vertex active for the next pass. With an
+// infinite threshold the second pass visits nothing, so 10 passes give the
+// positions of 1; with a small one the passes (10) visit fewer vertices than with
+// none, and reach about the same ASJ.
+void test_reactivation()
+{
+  const Hex_mesh_arrays in = perturbed_cube(8, 0.25, 7);
+  const HMO::internal::Quality_statistics q0 = HMO::internal::quality_statistics(in);
+  HMO_CHECK(q0.inverted == 0);
+  const Hex_mesh_topology topo(in);
+  const Target_surface target(in);
+  Asj_smoothing_settings s;
+  s.min_sj_floor = q0.msj;
+  s.max_passes = 10;
+  s.min_asj_gain = -1.;
+  auto run = [&](const Asj_smoothing_settings& settings, Asj_smoothing_report& r) {
+    std::vector<Vec3> p = in.points;
+    r = HMO::internal::smooth_for_average_quality(topo, &target, p, settings);
+    return p;
+  };
+  Asj_smoothing_report r_none, r_small, r_inf, r_one;
+  run(s, r_none);
+  Asj_smoothing_settings small = s;
+  small.min_reactivating_gain = 1e-3;
+  run(small, r_small);
+  Asj_smoothing_settings inf = s;
+  inf.min_reactivating_gain = std::numeric_limits<double>::infinity();
+  const std::vector<Vec3> p_inf = run(inf, r_inf);
+  Asj_smoothing_settings one = s;
+  one.max_passes = 1;
+  const std::vector<Vec3> p_one = run(one, r_one);
+  std::cout << "reactivation: moves " << r_none.accepted_moves << " (ASJ " << r_none.asj_after << "), "
+            << r_small.accepted_moves << " (ASJ " << r_small.asj_after << ") with 1e-3, "
+            << r_inf.accepted_moves << " with infinity, " << r_one.accepted_moves << " in one pass" << std::endl;
+  HMO_CHECK(p_inf == p_one);
+  HMO_CHECK(r_inf.accepted_moves == r_one.accepted_moves);
+  HMO_CHECK(r_small.accepted_moves < r_none.accepted_moves);
+  HMO_CHECK(r_small.asj_after > r_one.asj_after);
+  HMO_CHECK(std::abs(r_small.asj_after - r_none.asj_after) < 0.1 * (r_none.asj_after - r_none.asj_before));
+}
+
 int main(int, char** argv)
 {
   test_exp_minus();
@@ -491,6 +533,7 @@ int main(int, char** argv)
   test_focus();
   test_curved();
   test_parallel();
+  test_reactivation();
   test_shortcut();
   test_guard_answers();
   test_shared_mesh();

@@ -413,6 +413,7 @@ private:
     Asj_smoothing_settings settings;
     settings.max_passes = sc.asj_passes;
     settings.min_asj_gain = sc.asj_min_gain;
+    settings.min_reactivating_gain = sc.asj_reactivation_gain;
     if(sc.final_asj_moves_boundary)
     {
       if(st.current_error < 0.) measure_error(st);

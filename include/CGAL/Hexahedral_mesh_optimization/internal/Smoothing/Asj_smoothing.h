@@ -131,6 +131,10 @@ struct Asj_smoothing_settings
   /// a move must raise the vertex's objective (a sum of soft minima) by more
   /// than this; a vertex that cannot is left alone until a neighbour moves
   double min_move_gain = 1e-6;
+  /// a vertex whose visit raised its objective by at most this makes no
+  /// vertex around it active for the next pass (it moved, but too little to
+  /// give its neighbours much to gain); 0: every move does
+  double min_reactivating_gain = 0.;
   /// backtracking: at most this many halvings of a step
   int max_halvings = 3;
   /// with a target surface: whether regular and sharp boundary vertices move
@@ -413,7 +417,9 @@ public:
         if(out_of_time) break;
         for_each_vertex(colour, [&](std::size_t v) {
           if(!active[v] || out_of_time.load(std::memory_order_relaxed)) return;
-          if(optimize_vertex(v)) moved[v] = 1;
+          // 1: moved, 2: moved enough to make the vertices around it active
+          const double gain = optimize_vertex(v);
+          if(gain > 0.) moved[v] = gain > m_s.min_reactivating_gain ? 2 : 1;
           if(time_limit_reached(m_s.time_limit)) out_of_time = true;
         });
       }
@@ -422,6 +428,7 @@ public:
       {
         if(!moved[v]) continue;
         ++rep.accepted_moves;
+        if(moved[v] < 2) continue;
         for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
           for(std::size_t w : m_topo.hexes()[c->hex])
             if(m_kind[w] != FIXED) next[w] = 1;
@@ -845,7 +852,8 @@ private:
     return -1;
   }
 
-  bool optimize_vertex(std::size_t v)
+  // one visit of v; returns how much its objective rose (0: v did not move)
+  double optimize_vertex(std::size_t v)
   {
     const Corner* b = m_topo.vertex_corners_begin(v);
     const Corner* e = m_topo.vertex_corners_end(v);
@@ -853,6 +861,7 @@ private:
     Vec3 normal{0., 0., 0.};
     if(m_kind[v] == ON_SURFACE) normal = m_target->constraint_at(v, m_p[v]).direction;
     double current = current_value(v);
+    const double start = current;
     Surface_deviation allowed{-1., -1.}; // computed when first needed
     bool moved = false;
 
@@ -903,7 +912,7 @@ private:
         if(m_kind[v] == ON_SURFACE) normal = m_target->constraint_at(v, m_p[v]).direction;
       }
     }
-    return moved;
+    return moved ? current - start : 0.;
   }
 
   const Hex_mesh_topology& m_topo;
