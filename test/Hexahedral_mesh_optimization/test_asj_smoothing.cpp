@@ -274,7 +274,7 @@ void test_curved()
 // passes gives the same positions twice, and on one thread as on all; no
 // element ends below its floor; the result is comparable with the
 // one-vertex-at-a-time passes in index order. One block holding every vertex
-// is index order itself.
+// is index order itself, and so is every order without TBB.
 void test_parallel_order(Asj_smoothing_settings::Visit_order order, const char* name)
 {
   const Hex_mesh_arrays in = perturbed_shell(6, 12, 6, 0.2, 5);
@@ -314,7 +314,11 @@ void test_parallel_order(Asj_smoothing_settings::Visit_order order, const char* 
   HMO_CHECK(r1.passes == 4);
   HMO_CHECK(r1.asj_after > r1.asj_before + 0.01);
   HMO_CHECK(std::abs(r1.asj_after - rs.asj_after) < 0.5 * (rs.asj_after - rs.asj_before));
+#ifdef CGAL_LINKED_WITH_TBB
   HMO_CHECK(p1 != ps); // another order
+#else
+  HMO_CHECK(p1 == ps); // without TBB every pass runs in index order
+#endif
   Hex_mesh_arrays out = in;
   out.points = p1;
   const std::vector<double> sj1 = HMO::internal::scaled_jacobians(out);

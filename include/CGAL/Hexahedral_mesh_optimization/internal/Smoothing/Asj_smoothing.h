@@ -172,8 +172,9 @@ struct Asj_smoothing_settings
   ///   - `index`: one vertex at a time, in index order;
   ///   - `colours`: colour by colour (see `colour_units`), the vertices
   ///     of one colour on all threads;
-  ///   - `index_blocks`: the vertices cut, in index order, into blocks of
-  ///     `block_size`; the blocks are coloured as the vertices are in
+  ///   - `index_blocks`: the vertices cut into blocks of `block_size`
+  ///     vertices close in space (`sort_into_blocks`), each block in index
+  ///     order; the blocks are coloured as the vertices are in
   ///     `colours` (two blocks of one colour share no hex and read none of
   ///     each other's boundary quads), the blocks of one colour run on all
   ///     threads, and each block runs in index order.
@@ -560,12 +561,12 @@ private:
   void for_each_vertex(std::size_t colour, F f) const
   {
     const std::vector<std::size_t>& members = m_colours[colour];
-    if(m_s.order == Asj_smoothing_settings::Visit_order::index_blocks)
+    if(m_order == Asj_smoothing_settings::Visit_order::index_blocks)
       parallel_for_each_index(members.size(), [&](std::size_t i) {
         const std::size_t b = members[i];
         for(std::size_t k = m_block_begin[b]; k < m_block_begin[b + 1]; ++k) f(m_movable[k]);
       });
-    else if(m_s.order == Asj_smoothing_settings::Visit_order::colours && m_colours.size() > 1)
+    else if(m_order == Asj_smoothing_settings::Visit_order::colours && m_colours.size() > 1)
       parallel_for_each_index(members.size(), [&](std::size_t i) { f(members[i]); }, 64);
     else
       for(std::size_t v : members) f(v);
@@ -589,10 +590,11 @@ private:
     for(std::size_t v = 0; v < nv; ++v)
       if(m_kind[v] != FIXED) m_movable.push_back(v);
     typedef Asj_smoothing_settings::Visit_order Order;
-    Order order = m_s.order;
+    m_order = m_s.order;
 #ifndef CGAL_LINKED_WITH_TBB
-    order = Order::index;
+    m_order = Order::index; // nothing to run in parallel
 #endif
+    const Order order = m_order;
     if(order == Order::index)
     {
       m_colours.assign(1, m_movable);
@@ -927,8 +929,10 @@ private:
   double m_kappa = 0.; // current sharpness of the objective
   std::vector<double> m_samples, m_sj, m_floor, m_value, m_step;
   std::size_t m_trial_size = 0;
-  // Gauss-Seidel order (see `order_vertices`): the vertices that may move,
-  // and the vertices, or blocks of them, of each colour
+  // Gauss-Seidel order (see `order_vertices`): the order in effect (index
+  // order without TBB), the vertices that may move, and the vertices, or
+  // blocks of them, of each colour
+  Asj_smoothing_settings::Visit_order m_order = Asj_smoothing_settings::Visit_order::index;
   std::vector<std::size_t> m_movable, m_block_begin;
   std::vector<std::vector<std::size_t> > m_colours;
 };
