@@ -383,20 +383,26 @@ private:
         drop *= 0.5;
         if(drop < sc.min_turn_floor_drop) break;
       }
-      else if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
-      {
-        productive = false;
-        m_turn_guard *= 0.5;
-        if(m_turn_guard < sc.min_turn_guard) break;
-      }
       else if(after < before + sc.turn_min_gain)
       {
+        // too little gained to pay for its surface check: undone unchecked
+        st.mesh.points = saved;
+        st.current_error = saved_error;
+        report_check(st, "the last ASJ + max-min turn",
+                     "MSJ " + std::to_string(after) + " less than " + std::to_string(sc.turn_min_gain) +
+                       " above " + std::to_string(before) + " (not worth its surface check)");
         productive = false;
         if(drop == 0.)
         {
           drop = sc.turn_floor_drop; // the first stall lowers the floor
           continue;
         }
+      }
+      else if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
+      {
+        productive = false;
+        m_turn_guard *= 0.5;
+        if(m_turn_guard < sc.min_turn_guard) break;
       }
       if(productive) unproductive = 0;
       else if(++unproductive >= sc.turn_patience) break;
