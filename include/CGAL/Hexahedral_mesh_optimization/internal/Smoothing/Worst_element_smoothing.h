@@ -43,11 +43,21 @@
 //     with, hence the mesh's MSJ never decreases and no element inverts.
 // Sweeps visit the vertices of the elements below the current goal
 // (min(target, MSJ + band)) worst first, until the MSJ stops rising.
+//
+// Parallel and deterministic: a sweep cuts its worst-first list into
+// batches of vertices that cannot see each other's moves (no shared hex; on
+// the boundary, neither a vertex of a boundary quad within two rings of the
+// other, which the surface tests read), each batch taken greedily from the
+// first `batch_window` vertices not yet visited, in list order; the vertices
+// of a batch move on all threads. A vertex left out waits for the next
+// batch, so the visiting order depends on the mesh only, never on the
+// number of threads, and stays close to worst first.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <algorithm>
@@ -77,6 +87,9 @@ struct Worst_element_smoothing_settings
   /// when a sweep stalls, move the interior vertices of the worst elements
   /// together (see `improve_element`)
   bool element_moves = true;
+  /// each batch of a sweep is taken from this many vertices at the head of
+  /// the worst-first list (see the top)
+  std::size_t batch_window = 256;
 };
 
 struct Worst_element_smoothing_report
@@ -121,11 +134,7 @@ public:
             if(mark[v] != sweep) { mark[v] = sweep; order.push_back({vertex_min(points, v, sj), v}); }
       std::sort(order.begin(), order.end());
       ++rep.sweeps;
-      for(const auto& o : order)
-      {
-        if(time_limit_reached(s.time_limit)) break;
-        rep.moves += improve_vertex(points, o.second, sj, s.steps_per_vertex);
-      }
+      rep.moves += sweep_in_batches(points, order, sj, s);
       double now = *std::min_element(sj.begin(), sj.end());
       if(now - msj < s.min_gain && s.element_moves)
       {
@@ -195,6 +204,89 @@ public:
 
 private:
   static constexpr double softness = 60.;
+
+  /// one sweep over `order` (worst first) in conflict-free batches (see the
+  /// top); returns the number of steps accepted
+  std::size_t sweep_in_batches(std::vector<Vec3>& points, const std::vector<std::pair<double, std::size_t> >& order,
+                               std::vector<double>& sj, const Worst_element_smoothing_settings& s)
+  {
+    index_boundary_quads();
+    const std::size_t nv = m_topo.number_of_vertices();
+    m_hex_stamp.assign(m_topo.number_of_hexes(), 0);
+    m_read_stamp.assign(nv, 0);
+    m_member_stamp.assign(nv, 0);
+    std::vector<std::size_t> pending, rest, batch, ring;
+    pending.reserve(order.size());
+    for(const auto& o : order) pending.push_back(o.second);
+    std::vector<std::size_t> accepted;
+    std::size_t moves = 0;
+    std::size_t stamp = 0;
+    while(!pending.empty() && !time_limit_reached(s.time_limit))
+    {
+      ++stamp;
+      batch.clear();
+      rest.clear();
+      for(std::size_t k = 0; k < pending.size(); ++k)
+      {
+        const std::size_t v = pending[k];
+        if(k < s.batch_window && claim(v, stamp, ring)) batch.push_back(v);
+        else rest.push_back(v);
+      }
+      accepted.assign(batch.size(), 0);
+      parallel_for_each_index(batch.size(), [&](std::size_t i) {
+        if(!time_limit_reached(s.time_limit)) accepted[i] = improve_vertex(points, batch[i], sj, s.steps_per_vertex);
+      });
+      for(std::size_t a : accepted) moves += a;
+      pending.swap(rest);
+    }
+    return moves;
+  }
+
+  /// Adds v to the batch `stamp` if no vertex of the batch sees its move or
+  /// is seen by it: no shared hex, and for boundary vertices (their surface
+  /// tests read the boundary quads within two rings) neither a vertex of
+  /// the other's two rings of quads. `ring` is scratch.
+  bool claim(std::size_t v, std::size_t stamp, std::vector<std::size_t>& ring)
+  {
+    if(m_read_stamp[v] == stamp) return false;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+      if(m_hex_stamp[c->hex] == stamp) return false;
+    ring.clear();
+    if(m_topo.is_boundary_vertex(v))
+    {
+      const auto& bf = m_topo.boundary_faces();
+      for(std::size_t i = m_bq_off[v]; i < m_bq_off[v + 1]; ++i)
+        for(std::size_t x : bf[m_bq[i]])
+          for(std::size_t j = m_bq_off[x]; j < m_bq_off[x + 1]; ++j)
+            for(std::size_t w : bf[m_bq[j]])
+            {
+              if(m_member_stamp[w] == stamp) return false;
+              ring.push_back(w);
+            }
+    }
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      m_hex_stamp[c->hex] = stamp;
+      for(std::size_t w : m_topo.hexes()[c->hex]) m_read_stamp[w] = stamp;
+    }
+    for(std::size_t w : ring) m_read_stamp[w] = stamp;
+    m_member_stamp[v] = stamp;
+    return true;
+  }
+
+  /// the boundary quads around each vertex (m_bq from m_bq_off[v] to m_bq_off[v + 1])
+  void index_boundary_quads()
+  {
+    const std::size_t nv = m_topo.number_of_vertices();
+    if(m_bq_off.size() == nv + 1) return;
+    const auto& bf = m_topo.boundary_faces();
+    m_bq_off.assign(nv + 1, 0);
+    for(const auto& q : bf) for(std::size_t v : q) ++m_bq_off[v + 1];
+    for(std::size_t v = 0; v < nv; ++v) m_bq_off[v + 1] += m_bq_off[v];
+    m_bq.resize(m_bq_off[nv]);
+    std::vector<std::size_t> fill(m_bq_off.begin(), m_bq_off.end() - 1);
+    for(std::size_t q = 0; q < bf.size(); ++q) for(std::size_t v : bf[q]) m_bq[fill[v]++] = q;
+  }
 
   std::array<Vec3, 8> corners(const std::vector<Vec3>& points, std::size_t h) const
   {
@@ -433,6 +525,10 @@ private:
   const Surface_guard* m_guard;
   double m_max_deviation = std::numeric_limits<double>::infinity();
   bool m_guarded = false;
+  // the batches of a sweep (`sweep_in_batches`): the boundary quads around
+  // each vertex, and the batch that last claimed each hex, read each vertex
+  // and moves each vertex
+  std::vector<std::size_t> m_bq_off, m_bq, m_hex_stamp, m_read_stamp, m_member_stamp;
 };
 
 } // namespace internal
