@@ -337,15 +337,17 @@ private:
 
   /// ASJ smoothing and max-min smoothing in turn while the MSJ rises: the
   /// ASJ pass reshapes the neighbourhood of the worst elements, which frees
-  /// elements the max-min smoothing had stalled on. A turn that leaves the
-  /// surface error above max(tolerance, the error before the turns) gets a
-  /// restoration, and is undone if that does not bring it back (the guard
-  /// is then halved); so is a turn with a lowered floor that ends below the
-  /// MSJ it started from (the drop is then halved). The first turn that
-  /// gains less than `turn_min_gain` lowers the floor of the ASJ passes; from
-  /// then on, `turn_patience` turns in a row that are undone or gain too
-  /// little end the turns, as do `max_turns`, a guard below
-  /// `min_turn_guard` or a drop below `min_turn_floor_drop`.
+  /// elements the max-min smoothing had stalled on. The ASJ pass may take
+  /// elements down to its floor, the MSJ minus a drop: 0, then
+  /// `turn_floor_drop`, halved down to `min_turn_floor_drop`, then 0 again.
+  /// A turn that raised the MSJ (by more than `turn_min_kept_gain`) is kept
+  /// if its surface error stays within max(tolerance, the error before the
+  /// turns), after a restoration if need be; otherwise it is undone (and the
+  /// guard halved, down to `min_turn_guard`). A turn that raised nothing is
+  /// undone without a surface check. A turn kept with a gain of at least
+  /// `turn_min_gain` keeps its drop; any other moves on to the next drop.
+  /// The turns end when every drop has failed in a row, or after
+  /// `max_turns` (see `Optimization_schedule` for why).
   void turns(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
@@ -354,8 +356,10 @@ private:
     st.guard->set_dense_sampling_above(sc.turn_dense_sampling * st.tolerance);
     if(st.current_error < 0.) measure_error(st);
     st.error_bound = (std::max)(m_s.surface_tolerance, st.current_error);
-    double drop = 0.;
-    int unproductive = 0; // turns in a row undone or gaining too little
+    std::vector<double> drops(1, 0.);
+    for(double d = sc.turn_floor_drop; d >= sc.min_turn_floor_drop && d > 0.; d *= 0.5) drops.push_back(d);
+    std::size_t mode = 0;       // the drop in use
+    std::size_t unproductive = 0; // turns in a row not productive
     m_turn_guard = sc.turn_guard;
     for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
     {
@@ -369,43 +373,33 @@ private:
       one_focused_pass.order = Asj_smoothing_settings::Visit_order::index_blocks;
       one_focused_pass.block_size = sc.turn_block_size;
       one_focused_pass.start_deviation_budget = error_budget(st, m_turn_guard);
-      asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drop);
+      asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drops[mode]);
       max_min_stage(st, m_turn_guard * st.tolerance);
       const double after = quality_statistics(st.mesh).msj;
-      bool productive = true;
-      if(drop > 0. && after < before)
+      // a turn worth its surface check is kept within the bound; the others
+      // are undone unchecked
+      const bool worth = after > before + sc.turn_min_kept_gain;
+      const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true);
+      if(!worth)
       {
         st.mesh.points = saved;
         st.current_error = saved_error;
-        report_check(st, "the last ASJ + max-min turn with a lowered floor",
-                     "MSJ " + std::to_string(after) + " below " + std::to_string(before));
-        productive = false;
-        drop *= 0.5;
-        if(drop < sc.min_turn_floor_drop) break;
+        std::ostringstream why;
+        why << "MSJ " << before << " -> " << after << " with the floor " << drops[mode] << " below it";
+        report_check(st, "the last ASJ + max-min turn", why.str());
       }
-      else if(after < before + sc.turn_min_gain)
+      else if(!kept)
       {
-        // too little gained to pay for its surface check: undone unchecked
-        st.mesh.points = saved;
-        st.current_error = saved_error;
-        report_check(st, "the last ASJ + max-min turn",
-                     "MSJ " + std::to_string(after) + " less than " + std::to_string(sc.turn_min_gain) +
-                       " above " + std::to_string(before) + " (not worth its surface check)");
-        productive = false;
-        if(drop == 0.)
-        {
-          drop = sc.turn_floor_drop; // the first stall lowers the floor
-          continue;
-        }
-      }
-      else if(!within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true))
-      {
-        productive = false;
-        m_turn_guard *= 0.5;
+        m_turn_guard *= 0.5; // undone for its surface error
         if(m_turn_guard < sc.min_turn_guard) break;
       }
+      const bool productive = kept && after >= before + sc.turn_min_gain;
       if(productive) unproductive = 0;
-      else if(++unproductive >= sc.turn_patience) break;
+      else
+      {
+        if(++unproductive >= drops.size()) break;
+        mode = (mode + 1) % drops.size();
+      }
     }
   }
 

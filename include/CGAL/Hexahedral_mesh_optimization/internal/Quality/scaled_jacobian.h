@@ -144,6 +144,79 @@ inline const int* corner_samples_of_corner(int c)
   return s[c];
 }
 
+/// The 5 samples of a hex that depend on its corner c, as functions of the
+/// position x of c, the 7 other corners fixed: the corner samples
+/// `corner_samples_of_corner(c)` (c's own frame first, then the frames of
+/// its 3 edge neighbours) and the centre. What does not depend on x is
+/// computed once by `set`, so that `evaluate` costs about half of
+/// recomputing the 5 samples: a neighbour's frame has one edge that moves
+/// (its value is dot(x - p_k, w) / (|x - p_k| |b| |c|), w the cross product
+/// of its fixed edges b and c), and the centre's axes are fixed sums plus
+/// or minus x. Same values as `hex_samples` up to rounding, same treatment
+/// of vanishing edges.
+class Corner_dependent_samples
+{
+public:
+  void set(const std::array<Vec3, 8>& p, int c)
+  {
+    const int* n = hex_corner_edges[c];
+    for(int k = 0; k < 3; ++k) m_own_end[k] = p[n[k]];
+    const int* dep = corner_samples_of_corner(c);
+    for(int j = 0; j < 3; ++j)
+    {
+      const int k = dep[j + 1];
+      const int* e = hex_corner_edges[k];
+      const int slot = e[0] == c ? 0 : (e[1] == c ? 1 : 2);
+      const Vec3 b = p[e[(slot + 1) % 3]] - p[k], d = p[e[(slot + 2) % 3]] - p[k];
+      Neighbour& nb = m_neighbour[j];
+      nb.origin = p[k];
+      nb.cross = cross(b, d); // det[.. x - p_k at `slot` ..] = dot(x - p_k, b × d)
+      const double lb = squared_norm(b), ld = squared_norm(d);
+      nb.fixed_product = lb * ld;
+      nb.fixed_min = (std::min)(lb, ld);
+      nb.fixed_max = (std::max)(lb, ld);
+    }
+    Vec3 x[3];
+    principal_axes(p, x[0], x[1], x[2]);
+    for(int k = 0; k < 3; ++k)
+    {
+      m_axis_sign[k] = hex_axis_sign(c, k);
+      m_axis_rest[k] = x[k] - m_axis_sign[k] * p[c];
+    }
+  }
+
+  /// the 5 samples with corner c at x, in the order above
+  void evaluate(const Vec3& x, double s[5]) const
+  {
+    s[0] = normalized_triple_product(m_own_end[0] - x, m_own_end[1] - x, m_own_end[2] - x);
+    for(int j = 0; j < 3; ++j)
+    {
+      const Neighbour& nb = m_neighbour[j];
+      const Vec3 a = x - nb.origin;
+      const double la = squared_norm(a);
+      const double lengths = std::sqrt(la * nb.fixed_product);
+      if(!(lengths > std::numeric_limits<double>::min()) ||
+         (std::min)(la, nb.fixed_min) <= vanishing_edge_squared_ratio * (std::max)(la, nb.fixed_max))
+        s[j + 1] = 0.;
+      else
+        s[j + 1] = dot(a, nb.cross) / lengths;
+    }
+    s[4] = normalized_triple_product(m_axis_rest[0] + m_axis_sign[0] * x, m_axis_rest[1] + m_axis_sign[1] * x,
+                                     m_axis_rest[2] + m_axis_sign[2] * x);
+  }
+
+private:
+  struct Neighbour
+  {
+    Vec3 origin, cross;
+    double fixed_product, fixed_min, fixed_max;
+  };
+  Vec3 m_own_end[3];
+  Neighbour m_neighbour[3];
+  Vec3 m_axis_rest[3];
+  double m_axis_sign[3];
+};
+
 /// gradient of det[a b c] / (|a||b||c|) (of value f) with respect to a, b and c
 inline void normalized_triple_product_gradient(const Vec3& a, const Vec3& b, const Vec3& c, double f,
                                                Vec3& ga, Vec3& gb, Vec3& gc)

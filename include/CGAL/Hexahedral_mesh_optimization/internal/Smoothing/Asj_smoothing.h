@@ -203,14 +203,6 @@ namespace asj_detail {
 /// the 9 Verdict samples of a hex (8 corners, then the centre)
 inline void all_samples(const std::array<Vec3, 8>& p, double s[9]) { hex_samples(p, s); }
 
-/// recomputes in `s` the 5 samples that depend on corner c
-inline void update_samples(const std::array<Vec3, 8>& p, int c, double s[9])
-{
-  const int* k = corner_samples_of_corner(c);
-  for(int j = 0; j < 4; ++j) s[k[j]] = corner_scaled_jacobian(p, k[j]);
-  s[8] = centre_scaled_jacobian(p);
-}
-
 inline double exact_minimum(const double s[9])
 {
   double m = s[0];
@@ -693,25 +685,71 @@ private:
     }
   }
 
-  // The objective F_v with v at x, or -infinity when a hex falls below its
-  // floor; the samples are left in this thread's `trial_buffer()`.
-  double evaluate(std::size_t v, const Vec3& x)
+  // The hexes around the vertex being visited, as the trials see them: the
+  // 5 samples that move with the vertex (`Corner_dependent_samples`), and
+  // the minimum m0 of the 4 that do not and their part of the soft
+  // minimum's sum, Σ exp(-κ (s_i - m0)). One per thread, set up by
+  // `prepare_visit` (a visit moves only its vertex: they stay valid).
+  struct Hex_in_visit
   {
-    double* trial = trial_buffer();
-    double f = 0.;
+    Corner_dependent_samples frames;
+    double fixed_min, fixed_sum;
+  };
+
+  std::vector<Hex_in_visit>& visit_buffer() const
+  {
+    thread_local std::vector<Hex_in_visit> buffer;
+    return buffer;
+  }
+
+  void prepare_visit(std::size_t v)
+  {
+    std::vector<Hex_in_visit>& around = visit_buffer();
+    around.resize(std::size_t(m_topo.vertex_corners_end(v) - m_topo.vertex_corners_begin(v)));
     std::size_t k = 0;
     for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c, ++k)
     {
-      std::array<Vec3, 8> p = corners(c->hex);
-      p[c->local] = x;
-      double* s = trial + 9 * k;
-      std::copy(&m_samples[9 * c->hex], &m_samples[9 * c->hex] + 9, s);
-      asj_detail::update_samples(p, c->local, s);
-      const double q = asj_detail::exact_minimum(s);
-      if(!(q >= m_floor[c->hex])) return -std::numeric_limits<double>::infinity();
-      f += m_kappa > 0. ? asj_detail::soft_minimum(s, m_kappa) : q;
+      Hex_in_visit& a = around[k];
+      a.frames.set(corners(c->hex), c->local);
+      const double* s = &m_samples[9 * c->hex];
+      const int* dep = corner_samples_of_corner(c->local);
+      bool moves[8] = {false, false, false, false, false, false, false, false};
+      for(int j = 0; j < 4; ++j) moves[dep[j]] = true;
+      a.fixed_min = std::numeric_limits<double>::max();
+      for(int i = 0; i < 8; ++i) if(!moves[i]) a.fixed_min = (std::min)(a.fixed_min, s[i]);
+      a.fixed_sum = 0.;
+      for(int i = 0; i < 8; ++i) if(!moves[i]) a.fixed_sum += asj_detail::exp_minus(m_kappa * (s[i] - a.fixed_min));
     }
-    return f;
+  }
+
+  // The objective F_v with v at x (Σ over the hexes around v of the soft
+  // minimum of their samples: Σ q_h - log(Π_h sum_h) / κ, one logarithm),
+  // or -infinity when a hex falls below its floor; the 5 samples of each
+  // hex that moved are left in this thread's `trial_buffer()`. Needs
+  // `prepare_visit(v)`.
+  double evaluate(std::size_t v, const Vec3& x)
+  {
+    const std::vector<Hex_in_visit>& around = visit_buffer();
+    double* trial = trial_buffer();
+    double f = 0., product = 1.;
+    std::size_t k = 0;
+    for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c, ++k)
+    {
+      const Hex_in_visit& a = around[k];
+      double* s = trial + 5 * k;
+      a.frames.evaluate(x, s);
+      double q = a.fixed_min;
+      for(int j = 0; j < 5; ++j) q = (std::min)(q, s[j]);
+      if(!(q >= m_floor[c->hex])) return -std::numeric_limits<double>::infinity();
+      f += q;
+      if(m_kappa > 0.)
+      {
+        double sum = a.fixed_sum * asj_detail::exp_minus(m_kappa * (a.fixed_min - q));
+        for(int j = 0; j < 5; ++j) sum += asj_detail::exp_minus(m_kappa * (s[j] - q));
+        product *= sum;
+      }
+    }
+    return m_kappa > 0. ? f - std::log(product) / m_kappa : f;
   }
 
   double current_value(std::size_t v) const
@@ -729,8 +767,10 @@ private:
     std::size_t k = 0;
     for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c, ++k)
     {
-      const double* s = trial + 9 * k;
-      std::copy(s, s + 9, &m_samples[9 * c->hex]);
+      double* s = &m_samples[9 * c->hex];
+      const int* dep = corner_samples_of_corner(c->local);
+      for(int j = 0; j < 4; ++j) s[dep[j]] = trial[5 * k + j];
+      s[8] = trial[5 * k + 4];
       m_sj[c->hex] = asj_detail::exact_minimum(s);
       m_value[c->hex] = asj_detail::soft_minimum(s, m_kappa);
     }
@@ -866,6 +906,7 @@ private:
     const double start = current;
     Surface_deviation allowed{-1., -1.}; // computed when first needed
     bool moved = false;
+    prepare_visit(v);
 
     if(m_s.cuboid_targets)
     {
