@@ -580,6 +580,38 @@ void test_frame_kernel()
   for(Vec3& x : sheared) x[0] += 0.5 * x[2];
   HI::hex_samples(sheared, s9);
   for(int s = 0; s < 9; ++s) HMO_CHECK_CLOSE(s9[s], 1. / std::sqrt(1.25), 1e-14);
+
+  // the samples of one moving corner (Corner_dependent_samples, the ASJ
+  // trials) against the 9 samples recomputed, at the corner itself and
+  // elsewhere, inverted positions included; a vanishing edge counts as 0
+  std::uniform_real_distribution<double> far(-1.5, 1.5);
+  int moved = 0;
+  for(int trial = 0; trial < 20; ++trial)
+  {
+    std::array<Vec3, 8> p = cube;
+    for(Vec3& x : p) x = x + Vec3{u(rng), u(rng), u(rng)};
+    for(int c = 0; c < 8; ++c)
+    {
+      HI::Corner_dependent_samples frames;
+      frames.set(p, c);
+      const int* dep = HI::corner_samples_of_corner(c);
+      for(int k = 0; k < 4; ++k)
+      {
+        std::array<Vec3, 8> q = p;
+        if(k == 1) q[c] = q[c] + Vec3{far(rng), far(rng), far(rng)};
+        if(k == 2) q[c] = q[HI::hex_corner_edges[c][0]];            // on a neighbour: vanishing edge
+        if(k == 3) q[c] = 2. * q[HI::hex_corner_edges[c][1]] - q[c]; // folded through a neighbour
+        double expected[9], got[5];
+        HI::hex_samples(q, expected);
+        frames.evaluate(q[c], got);
+        for(int j = 0; j < 4; ++j) HMO_CHECK(std::abs(got[j] - expected[dep[j]]) < 1e-13);
+        HMO_CHECK(std::abs(got[4] - expected[8]) < 1e-13);
+        if(k == 2) HMO_CHECK(got[0] == 0. && got[1] == 0.);
+        ++moved;
+      }
+    }
+  }
+  HMO_CHECK(moved == 20 * 8 * 4);
 }
 
 /// the exact sign of det[q - p, r - p, t - p] for double points, in
