@@ -374,20 +374,7 @@ public:
     rep.asj_before = sum / double(nh);
     rep.msj_before = msj;
 
-    std::vector<unsigned char> active(nv, 1), next(nv, 0), moved(nv, 0);
-    if(std::isfinite(m_s.focus_below))
-    {
-      // the vertices of the hexes below the focus value, then one ring of hexes more
-      std::fill(active.begin(), active.end(), 0);
-      for(std::size_t h = 0; h < nh; ++h)
-        if(m_sj[h] < m_s.focus_below)
-          for(std::size_t w : m_topo.hexes()[h]) next[w] = 1;
-      for(std::size_t v = 0; v < nv; ++v)
-        if(next[v])
-          for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-            for(std::size_t w : m_topo.hexes()[c->hex]) active[w] = 1;
-    }
-    for(std::size_t v = 0; v < nv; ++v) if(m_kind[v] == FIXED) active[v] = 0;
+    std::vector<unsigned char> active = initial_active_set(), next(nv, 0), moved(nv, 0);
     double asj = rep.asj_before;
     m_kappa = m_s.objective_sharpness > 0. ? (std::min)(m_s.initial_objective_sharpness, m_s.objective_sharpness) : 0.;
     for(int pass = 0; pass < m_s.max_passes; ++pass)
@@ -446,6 +433,28 @@ public:
   }
 
 private:
+  // the vertices the first pass visits: every vertex that may move, or with
+  // `focus_below`, those of the hexes below it and of one ring of hexes more
+  std::vector<unsigned char> initial_active_set() const
+  {
+    const std::size_t nv = m_topo.number_of_vertices(), nh = m_topo.number_of_hexes();
+    std::vector<unsigned char> active(nv, 1);
+    if(std::isfinite(m_s.focus_below))
+    {
+      std::vector<unsigned char> below(nv, 0);
+      std::fill(active.begin(), active.end(), 0);
+      for(std::size_t h = 0; h < nh; ++h)
+        if(m_sj[h] < m_s.focus_below)
+          for(std::size_t w : m_topo.hexes()[h]) below[w] = 1;
+      for(std::size_t v = 0; v < nv; ++v)
+        if(below[v])
+          for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+            for(std::size_t w : m_topo.hexes()[c->hex]) active[w] = 1;
+    }
+    for(std::size_t v = 0; v < nv; ++v) if(m_kind[v] == FIXED) active[v] = 0;
+    return active;
+  }
+
   // How each vertex may move: interior vertices freely, regular boundary
   // vertices on the surface, sharp ones along their feature line (with their
   // two neighbours on it), the others (corners, or every boundary vertex
