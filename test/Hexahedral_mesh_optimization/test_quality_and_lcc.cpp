@@ -521,11 +521,15 @@ void test_frame_kernel()
 
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
+  auto perturbed_cube = [&] {
+    std::array<Vec3, 8> p = cube;
+    for(Vec3& x : p) x = x + Vec3{u(rng), u(rng), u(rng)};
+    return p;
+  };
   int compared = 0;
   for(int trial = 0; trial < 20; ++trial)
   {
-    std::array<Vec3, 8> p = cube;
-    for(Vec3& x : p) x = x + Vec3{u(rng), u(rng), u(rng)};
+    const std::array<Vec3, 8> p = perturbed_cube();
     for(int s = 0; s < 9; ++s)
     {
       // frame s from the coefficients: the corner edges, or the principal axes / 4
@@ -588,8 +592,7 @@ void test_frame_kernel()
   int moved = 0;
   for(int trial = 0; trial < 20; ++trial)
   {
-    std::array<Vec3, 8> p = cube;
-    for(Vec3& x : p) x = x + Vec3{u(rng), u(rng), u(rng)};
+    const std::array<Vec3, 8> p = perturbed_cube();
     for(int c = 0; c < 8; ++c)
     {
       HI::Corner_dependent_samples frames;

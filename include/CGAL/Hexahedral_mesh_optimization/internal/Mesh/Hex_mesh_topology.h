@@ -74,6 +74,11 @@ public:
   /// for each edge, the boundary faces containing it (two for a boundary edge of a manifold boundary)
   const std::vector<std::size_t>& boundary_vertices() const { return m_boundary_vertices; }
 
+  /// the boundary faces around vertex v (indices into boundary_faces(); none
+  /// for an interior vertex)
+  const std::size_t* vertex_boundary_faces_begin(std::size_t v) const { return m_vbf.data() + m_vbf_off[v]; }
+  const std::size_t* vertex_boundary_faces_end(std::size_t v) const { return m_vbf.data() + m_vbf_off[v + 1]; }
+
   /// the boundary faces around boundary edge e (indices into boundary_faces())
   std::vector<std::size_t> boundary_faces_of_edge(std::size_t e) const
   {
@@ -91,16 +96,25 @@ public:
   }
 
 private:
+  /// The incidence of vertices in `cells` (arrays of vertex indices), in
+  /// compressed rows: vertex v's entries are list[off[v] .. off[v + 1]),
+  /// entry(cell, local index) each, in cell order.
+  template <class Cell, class Entry, class Make>
+  void build_incidence(const std::vector<Cell>& cells, std::vector<std::size_t>& off, std::vector<Entry>& list,
+                       Make entry) const
+  {
+    off.assign(m_nv + 1, 0);
+    for(const Cell& c : cells) for(std::size_t v : c) ++off[v + 1];
+    for(std::size_t v = 0; v < m_nv; ++v) off[v + 1] += off[v];
+    list.resize(off[m_nv]);
+    std::vector<std::size_t> fill(off.begin(), off.end() - 1);
+    for(std::size_t c = 0; c < cells.size(); ++c)
+      for(int i = 0; i < int(cells[c].size()); ++i) list[fill[cells[c][i]]++] = entry(c, i);
+  }
+
   void build_vertex_hexes()
   {
-    m_vh_off.assign(m_nv + 1, 0);
-    for(const Hex& h : m_hexes) for(std::size_t v : h) ++m_vh_off[v + 1];
-    for(std::size_t i = 0; i < m_nv; ++i) m_vh_off[i + 1] += m_vh_off[i];
-    m_vh.resize(m_vh_off[m_nv]);
-    std::vector<std::size_t> fill(m_vh_off.begin(), m_vh_off.end() - 1);
-    for(std::size_t h = 0; h < m_hexes.size(); ++h)
-      for(int i = 0; i < 8; ++i)
-        m_vh[fill[m_hexes[h][i]]++] = Corner{h, i};
+    build_incidence(m_hexes, m_vh_off, m_vh, [](std::size_t h, int i) { return Corner{h, i}; });
   }
 
   void build_edges()
@@ -143,6 +157,7 @@ private:
       }
     for(std::size_t v = 0; v < m_nv; ++v)
       if(m_boundary_vertex[v]) m_boundary_vertices.push_back(v);
+    build_incidence(m_boundary_faces, m_vbf_off, m_vbf, [](std::size_t f, int) { return f; });
   }
 
   std::size_t m_nv;
@@ -157,6 +172,7 @@ private:
   std::vector<std::array<std::size_t, 4> > m_boundary_faces;
   std::unordered_map<std::size_t, std::vector<std::size_t> > m_edge_bfaces;
   std::vector<std::size_t> m_boundary_vertices;
+  std::vector<std::size_t> m_vbf_off, m_vbf; // boundary faces around each vertex
 };
 
 } // namespace internal

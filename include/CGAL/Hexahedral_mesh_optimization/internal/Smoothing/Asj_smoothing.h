@@ -351,7 +351,6 @@ public:
     CGAL_precondition(points.size() == topo.number_of_vertices());
     CGAL_precondition(target == nullptr || target->number_of_vertices() == topo.number_of_vertices());
     classify_vertices();
-    index_boundary_quads();
     m_check_surface = target != nullptr && s.move_boundary && std::isfinite(s.max_surface_deviation);
     if(m_check_surface && (!s.guard || s.start_deviation_budget > 0.))
       collect_deviation_rings();
@@ -487,19 +486,6 @@ private:
     }
   }
 
-  // the boundary quads around each vertex (m_bq from m_bq_off[v] to m_bq_off[v + 1])
-  void index_boundary_quads()
-  {
-    const std::size_t nv = m_topo.number_of_vertices();
-    const auto& bf = m_topo.boundary_faces();
-    m_bq_off.assign(nv + 1, 0);
-    for(const auto& q : bf) for(std::size_t v : q) ++m_bq_off[v + 1];
-    for(std::size_t v = 0; v < nv; ++v) m_bq_off[v + 1] += m_bq_off[v];
-    m_bq.resize(m_bq_off[nv]);
-    std::vector<std::size_t> fill(m_bq_off.begin(), m_bq_off.end() - 1);
-    for(std::size_t q = 0; q < bf.size(); ++q) for(std::size_t v : bf[q]) m_bq[fill[v]++] = q;
-  }
-
   // for the built-in deviation test: the boundary quads within two rings of
   // each moving boundary vertex, its own first
   void collect_deviation_rings()
@@ -513,11 +499,11 @@ private:
       if(m_kind[v] == ON_SURFACE || m_kind[v] == ON_LINE)
       {
         const std::size_t first = ring.size();
-        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k) ring.push_back(m_bq[k]);
-        for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
-          for(std::size_t u : bf[m_bq[k]])
-            for(std::size_t j = m_bq_off[u]; j < m_bq_off[u + 1]; ++j)
-              if(std::find(ring.begin() + first, ring.end(), m_bq[j]) == ring.end()) ring.push_back(m_bq[j]);
+        ring.insert(ring.end(), m_topo.vertex_boundary_faces_begin(v), m_topo.vertex_boundary_faces_end(v));
+        for(const std::size_t* k = m_topo.vertex_boundary_faces_begin(v); k != m_topo.vertex_boundary_faces_end(v); ++k)
+          for(std::size_t u : bf[*k])
+            for(const std::size_t* j = m_topo.vertex_boundary_faces_begin(u); j != m_topo.vertex_boundary_faces_end(u); ++j)
+              if(std::find(ring.begin() + first, ring.end(), *j) == ring.end()) ring.push_back(*j);
       }
       m_ring_off[v + 1] = ring.size();
     }
@@ -674,10 +660,10 @@ private:
         for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
           for(std::size_t w : m_topo.hexes()[c->hex]) near.push_back(unit_of[w]);
         if(m_kind[v] != FREE)
-          for(std::size_t i = m_bq_off[v]; i < m_bq_off[v + 1]; ++i)
-            for(std::size_t x : bf[m_bq[i]])
-              for(std::size_t j = m_bq_off[x]; j < m_bq_off[x + 1]; ++j)
-                for(std::size_t w : bf[m_bq[j]]) near.push_back(unit_of[w]);
+          for(const std::size_t* i = m_topo.vertex_boundary_faces_begin(v); i != m_topo.vertex_boundary_faces_end(v); ++i)
+            for(std::size_t x : bf[*i])
+              for(const std::size_t* j = m_topo.vertex_boundary_faces_begin(x); j != m_topo.vertex_boundary_faces_end(x); ++j)
+                for(std::size_t w : bf[*j]) near.push_back(unit_of[w]);
       }
       // smallest colour not used by a coloured unit near u
       for(std::size_t w : near)
@@ -836,9 +822,9 @@ private:
   bool covered(std::size_t u, std::size_t v, const Vec3& x, double tol2) const
   {
     const auto& bf = m_topo.boundary_faces();
-    for(std::size_t k = m_bq_off[u]; k < m_bq_off[u + 1]; ++k)
+    for(const std::size_t* k = m_topo.vertex_boundary_faces_begin(u); k != m_topo.vertex_boundary_faces_end(u); ++k)
     {
-      const auto& q = bf[m_bq[k]];
+      const auto& q = bf[*k];
       const Vec3* c[4];
       for(int i = 0; i < 4; ++i) c[i] = q[i] == v ? &x : &m_p[q[i]];
       if(asj_detail::squared_distance_to_quad(m_start[u], *c[0], *c[1], *c[2], *c[3]) <= tol2)
@@ -851,9 +837,9 @@ private:
   {
     const double tol2 = tolerance * tolerance;
     const auto& bf = m_topo.boundary_faces();
-    for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
+    for(const std::size_t* k = m_topo.vertex_boundary_faces_begin(v); k != m_topo.vertex_boundary_faces_end(v); ++k)
     {
-      const auto& q = bf[m_bq[k]];
+      const auto& q = bf[*k];
       std::array<Vec3, 4> c;
       int at = 0;
       for(int i = 0; i < 4; ++i)
@@ -868,8 +854,8 @@ private:
       if((at == 0 || at == 2) && !near_start(v, 0.5 * (c[0] + c[2]), tol2)) return false;
     }
     if(!covered(v, v, x, tol2)) return false;
-    for(std::size_t k = m_bq_off[v]; k < m_bq_off[v + 1]; ++k)
-      for(std::size_t u : bf[m_bq[k]])
+    for(const std::size_t* k = m_topo.vertex_boundary_faces_begin(v); k != m_topo.vertex_boundary_faces_end(v); ++k)
+      for(std::size_t u : bf[*k])
         if(u != v && !covered(u, v, x, tol2)) return false;
     return true;
   }
@@ -974,7 +960,7 @@ private:
   std::vector<Vec3> m_start;
   std::vector<unsigned char> m_kind;
   std::vector<std::array<std::size_t, 2> > m_line;
-  std::vector<std::size_t> m_bq_off, m_bq, m_ring_off, m_ring;
+  std::vector<std::size_t> m_ring_off, m_ring;
   bool m_check_surface = false;
   double m_kappa = 0.; // current sharpness of the objective
   std::vector<double> m_samples, m_sj, m_floor, m_value, m_step;

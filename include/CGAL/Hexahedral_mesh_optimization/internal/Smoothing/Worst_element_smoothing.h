@@ -210,7 +210,6 @@ private:
   std::size_t sweep_in_batches(std::vector<Vec3>& points, const std::vector<std::pair<double, std::size_t> >& order,
                                std::vector<double>& sj, const Worst_element_smoothing_settings& s)
   {
-    index_boundary_quads();
     const std::size_t nv = m_topo.number_of_vertices();
     m_hex_stamp.assign(m_topo.number_of_hexes(), 0);
     m_read_stamp.assign(nv, 0);
@@ -255,10 +254,10 @@ private:
     if(m_topo.is_boundary_vertex(v))
     {
       const auto& bf = m_topo.boundary_faces();
-      for(std::size_t i = m_bq_off[v]; i < m_bq_off[v + 1]; ++i)
-        for(std::size_t x : bf[m_bq[i]])
-          for(std::size_t j = m_bq_off[x]; j < m_bq_off[x + 1]; ++j)
-            for(std::size_t w : bf[m_bq[j]])
+      for(const std::size_t* i = m_topo.vertex_boundary_faces_begin(v); i != m_topo.vertex_boundary_faces_end(v); ++i)
+        for(std::size_t x : bf[*i])
+          for(const std::size_t* j = m_topo.vertex_boundary_faces_begin(x); j != m_topo.vertex_boundary_faces_end(x); ++j)
+            for(std::size_t w : bf[*j])
             {
               if(m_member_stamp[w] == stamp) return false;
               ring.push_back(w);
@@ -274,19 +273,6 @@ private:
     return true;
   }
 
-  /// the boundary quads around each vertex (m_bq from m_bq_off[v] to m_bq_off[v + 1])
-  void index_boundary_quads()
-  {
-    const std::size_t nv = m_topo.number_of_vertices();
-    if(m_bq_off.size() == nv + 1) return;
-    const auto& bf = m_topo.boundary_faces();
-    m_bq_off.assign(nv + 1, 0);
-    for(const auto& q : bf) for(std::size_t v : q) ++m_bq_off[v + 1];
-    for(std::size_t v = 0; v < nv; ++v) m_bq_off[v + 1] += m_bq_off[v];
-    m_bq.resize(m_bq_off[nv]);
-    std::vector<std::size_t> fill(m_bq_off.begin(), m_bq_off.end() - 1);
-    for(std::size_t q = 0; q < bf.size(); ++q) for(std::size_t v : bf[q]) m_bq[fill[v]++] = q;
-  }
 
   std::array<Vec3, 8> corners(const std::vector<Vec3>& points, std::size_t h) const
   {
@@ -525,10 +511,9 @@ private:
   const Surface_guard* m_guard;
   double m_max_deviation = std::numeric_limits<double>::infinity();
   bool m_guarded = false;
-  // the batches of a sweep (`sweep_in_batches`): the boundary quads around
-  // each vertex, and the batch that last claimed each hex, read each vertex
-  // and moves each vertex
-  std::vector<std::size_t> m_bq_off, m_bq, m_hex_stamp, m_read_stamp, m_member_stamp;
+  // the batches of a sweep (`sweep_in_batches`): the batch that last
+  // claimed each hex, read each vertex and moved each vertex
+  std::vector<std::size_t> m_hex_stamp, m_read_stamp, m_member_stamp;
 };
 
 } // namespace internal
