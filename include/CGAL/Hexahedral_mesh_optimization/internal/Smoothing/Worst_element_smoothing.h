@@ -214,29 +214,36 @@ private:
     m_hex_stamp.assign(m_topo.number_of_hexes(), 0);
     m_read_stamp.assign(nv, 0);
     m_member_stamp.assign(nv, 0);
-    std::vector<std::size_t> pending, rest, batch, ring;
+    // pending[head ..) are the vertices not yet visited, in list order; a
+    // batch looks at the first `batch_window` of them, and those it leaves
+    // out are moved up, in order, to just before the rest (O(window) a batch)
+    std::vector<std::size_t> pending, batch, ring;
     pending.reserve(order.size());
     for(const auto& o : order) pending.push_back(o.second);
     std::vector<std::size_t> accepted;
-    std::size_t moves = 0;
-    std::size_t stamp = 0;
-    while(!pending.empty() && !time_limit_reached(s.time_limit))
+    std::size_t moves = 0, stamp = 0, head = 0;
+    const std::size_t window = (std::max)(std::size_t(1), s.batch_window);
+    while(head < pending.size() && !time_limit_reached(s.time_limit))
     {
       ++stamp;
       batch.clear();
-      rest.clear();
-      for(std::size_t k = 0; k < pending.size(); ++k)
+      const std::size_t end = (std::min)(pending.size(), head + window);
+      std::size_t out = head;
+      for(std::size_t k = head; k < end; ++k)
       {
         const std::size_t v = pending[k];
-        if(k < s.batch_window && claim(v, stamp, ring)) batch.push_back(v);
-        else rest.push_back(v);
+        if(claim(v, stamp, ring)) batch.push_back(v);
+        else pending[out++] = v;
       }
+      // the left-out vertices, now pending[head, out), slide up to end at `end`
+      std::copy_backward(pending.begin() + std::ptrdiff_t(head), pending.begin() + std::ptrdiff_t(out),
+                         pending.begin() + std::ptrdiff_t(end));
+      head = end - (out - head);
       accepted.assign(batch.size(), 0);
       parallel_for_each_index(batch.size(), [&](std::size_t i) {
         if(!time_limit_reached(s.time_limit)) accepted[i] = improve_vertex(points, batch[i], sj, s.steps_per_vertex);
       });
       for(std::size_t a : accepted) moves += a;
-      pending.swap(rest);
     }
     return moves;
   }
