@@ -139,10 +139,14 @@ public:
       if(now - msj < s.min_gain && s.element_moves)
       {
         // single-vertex moves have stalled: move the interior vertices of
-        // each element at the minimum together
+        // each element at the minimum together (those below the target
+        // only: near the end of a 1M-hex grid's run, MSJ + band / 2 was
+        // above every element, and the moves of all of them, one at a time,
+        // took half of the run)
         std::vector<std::pair<double, std::size_t> > worst;
+        const double below = (std::min)(now + 0.5 * s.band, s.target_sj);
         for(std::size_t h = 0; h < nh; ++h)
-          if(sj[h] < now + 0.5 * s.band) worst.push_back({sj[h], h});
+          if(sj[h] < below) worst.push_back({sj[h], h});
         std::sort(worst.begin(), worst.end());
         for(const auto& w : worst)
           if(!time_limit_reached(s.time_limit)) rep.moves += improve_element(points, w.second, sj);
