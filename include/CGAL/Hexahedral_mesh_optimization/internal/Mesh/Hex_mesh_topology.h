@@ -79,6 +79,17 @@ public:
   const std::size_t* vertex_boundary_faces_begin(std::size_t v) const { return m_vbf.data() + m_vbf_off[v]; }
   const std::size_t* vertex_boundary_faces_end(std::size_t v) const { return m_vbf.data() + m_vbf_off[v + 1]; }
 
+  /// Appends to `out` the vertices of the boundary faces around the
+  /// vertices of the boundary faces around v (two rings of faces; with
+  /// repeats): what a surface test of a move of v reads.
+  void append_two_ring_boundary_vertices(std::size_t v, std::vector<std::size_t>& out) const
+  {
+    for(const std::size_t* f = vertex_boundary_faces_begin(v); f != vertex_boundary_faces_end(v); ++f)
+      for(std::size_t x : m_boundary_faces[*f])
+        for(const std::size_t* g = vertex_boundary_faces_begin(x); g != vertex_boundary_faces_end(x); ++g)
+          out.insert(out.end(), m_boundary_faces[*g].begin(), m_boundary_faces[*g].end());
+  }
+
   /// the boundary faces around boundary edge e (indices into boundary_faces())
   std::vector<std::size_t> boundary_faces_of_edge(std::size_t e) const
   {

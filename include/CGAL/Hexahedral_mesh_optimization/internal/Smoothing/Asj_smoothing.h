@@ -649,8 +649,7 @@ private:
   void colour_units(const std::vector<std::size_t>& unit_of, std::size_t units)
   {
     const std::size_t none = std::numeric_limits<std::size_t>::max();
-    const auto& bf = m_topo.boundary_faces();
-    std::vector<std::size_t> colour(units, none), stamp, near;
+    std::vector<std::size_t> colour(units, none), stamp, near, ring;
     for(std::size_t u = 0; u < units; ++u)
     {
       near.clear();
@@ -660,10 +659,11 @@ private:
         for(const Corner* c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
           for(std::size_t w : m_topo.hexes()[c->hex]) near.push_back(unit_of[w]);
         if(m_kind[v] != FREE)
-          for(const std::size_t* i = m_topo.vertex_boundary_faces_begin(v); i != m_topo.vertex_boundary_faces_end(v); ++i)
-            for(std::size_t x : bf[*i])
-              for(const std::size_t* j = m_topo.vertex_boundary_faces_begin(x); j != m_topo.vertex_boundary_faces_end(x); ++j)
-                for(std::size_t w : bf[*j]) near.push_back(unit_of[w]);
+        {
+          ring.clear();
+          m_topo.append_two_ring_boundary_vertices(v, ring);
+          for(std::size_t w : ring) near.push_back(unit_of[w]);
+        }
       }
       // smallest colour not used by a coloured unit near u
       for(std::size_t w : near)

@@ -264,15 +264,9 @@ private:
     ring.clear();
     if(m_topo.is_boundary_vertex(v))
     {
-      const auto& bf = m_topo.boundary_faces();
-      for(const std::size_t* i = m_topo.vertex_boundary_faces_begin(v); i != m_topo.vertex_boundary_faces_end(v); ++i)
-        for(std::size_t x : bf[*i])
-          for(const std::size_t* j = m_topo.vertex_boundary_faces_begin(x); j != m_topo.vertex_boundary_faces_end(x); ++j)
-            for(std::size_t w : bf[*j])
-            {
-              if(m_member_stamp[w] == stamp) return false;
-              ring.push_back(w);
-            }
+      m_topo.append_two_ring_boundary_vertices(v, ring);
+      for(std::size_t w : ring)
+        if(m_member_stamp[w] == stamp) return false;
     }
     for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
     {
