@@ -581,6 +581,35 @@ void test_culled_distance()
       check(exact, moved, lower);
     }
   }
+
+  // coarse triangles with their corners on a finely triangulated cylinder,
+  // each spanning several of its triangles (a boundary quad that slid across
+  // the reference): the single-triangle bound is loose on each, the parts of
+  // the subdivision are not; every depth (0: none) gives CGAL's answer
+  HMO::Triangle_surface coarse;
+  const int ca = 3, cz = 3;
+  auto on_cylinder = [](double i, double j, double na, double nz) {
+    const double a = 1.5707963267948966 * i / na;
+    return Vec3{std::cos(a), std::sin(a), 2. * j / nz};
+  };
+  for(int i = 0; i < ca; ++i)
+    for(int j = 0; j < cz; ++j)
+    {
+      // corners shifted along the surface, off the fine triangulation's vertices
+      const double di = 0.37, dj = 0.21;
+      HMO::add_separate_triangle(coarse, on_cylinder(i + di, j + dj, ca + 1, cz + 1),
+                                 on_cylinder(i + 1 + di, j + dj, ca + 1, cz + 1),
+                                 on_cylinder(i + 1 + di, j + 1 + dj, ca + 1, cz + 1));
+    }
+  const double full = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(coarse, exact, error_bound);
+  HMO_CHECK(full > 0.01); // the chords' middles are inside the cylinder
+  for(int depth : {0, 1, 3, 5})
+    for(double lower : {0., 0.5 * full, 2. * full})
+    {
+      const double culled = HMO::one_sided_distance_above(HMO::surface_distance_detail::triangles_of(coarse), exact,
+                                                          lower, error_bound, depth);
+      HMO_CHECK(std::abs(culled - (std::max)(lower, full)) <= 2. * error_bound);
+    }
 }
 
 // The reference-fit check: the mesh's own boundary fits; scaled by 1.05
