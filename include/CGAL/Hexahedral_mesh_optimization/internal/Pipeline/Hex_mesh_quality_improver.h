@@ -312,15 +312,18 @@ private:
   /// runs first, and if the error is still above, or the time limit was
   /// reached before the check, the state `saved` (of error `saved_error`) is
   /// put back and a "check" stage says why.
-  bool within_bound(Run_state& st, const std::vector<Vec3>& saved, double saved_error, const char* what, bool restore)
+  bool within_bound(Run_state& st, const std::vector<Vec3>& saved, double saved_error, const char* what, bool restore,
+                    bool* restored = nullptr)
   {
     double e = -1.;
+    if(restored) *restored = false;
     if(!stopped())
     {
       e = measure_error_since(st, saved, saved_error);
       if(e <= st.error_bound) return true;
       if(restore && !stopped())
       {
+        if(restored) *restored = true;
         restoration_stage(st);
         e = measure_error(st);
         if(e <= st.error_bound && !stopped()) return true;
@@ -361,11 +364,16 @@ private:
     std::size_t mode = 0;       // the drop in use
     std::size_t unproductive = 0; // turns in a row not productive
     m_turn_guard = sc.turn_guard;
+    // one smoother for all the turns: its vertex order and colours are set
+    // up once (see `Asj_smoother::restart`)
+    std::unique_ptr<Asj_smoother> smoother;
+    Quality_statistics now = quality_statistics(st.mesh);
     for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
     {
       const std::vector<Vec3> saved = st.mesh.points;
       const double saved_error = st.current_error;
-      const double before = quality_statistics(st.mesh).msj;
+      const Quality_statistics saved_quality = now;
+      const double before = now.msj;
       if(before >= aimed_msj()) break;
       Asj_smoothing_settings one_focused_pass;
       one_focused_pass.max_passes = 1;
@@ -373,13 +381,16 @@ private:
       one_focused_pass.order = Asj_smoothing_settings::Visit_order::index_blocks;
       one_focused_pass.block_size = sc.turn_block_size;
       one_focused_pass.start_deviation_budget = error_budget(st, m_turn_guard);
-      asj_stage(st, m_turn_guard * st.tolerance, one_focused_pass, drops[mode]);
-      max_min_stage(st, m_turn_guard * st.tolerance);
-      const double after = quality_statistics(st.mesh).msj;
+      now = asj_stage(st, now, m_turn_guard * st.tolerance, one_focused_pass, drops[mode], &smoother);
+      now = max_min_stage(st, now, m_turn_guard * st.tolerance);
+      const double after = now.msj;
       // a turn worth its surface check is kept within the bound; the others
       // are undone unchecked
       const bool worth = after > before + sc.turn_min_kept_gain;
-      const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true);
+      bool restored = false;
+      const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true, &restored);
+      if(!kept) now = saved_quality;
+      else if(restored) now = quality_statistics(st.mesh);
       if(!worth)
       {
         st.mesh.points = saved;
@@ -421,13 +432,13 @@ private:
       const std::vector<Vec3> saved = st.mesh.points;
       const double saved_error = st.current_error;
       settings.start_deviation_budget = error_budget(st, m_turn_guard);
-      asj_stage(st, m_turn_guard * st.tolerance, settings);
+      asj_stage(st, quality_statistics(st.mesh), m_turn_guard * st.tolerance, settings);
       if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
     }
     const double error = st.current_error;
     settings.move_boundary = false;
     settings.start_deviation_budget = 0.;
-    asj_stage(st, m_turn_guard * st.tolerance, settings);
+    asj_stage(st, quality_statistics(st.mesh), m_turn_guard * st.tolerance, settings);
     st.current_error = error; // the boundary did not move
   }
 
@@ -445,23 +456,33 @@ private:
     m_visitor.stage_finished(sr);
   }
 
-  /// an ASJ smoothing; `as` brings the caller's choices (passes, focus,
-  /// fixed boundary), the floor (the MSJ − `floor_drop`) and guard are set here
-  void asj_stage(Run_state& st, double guard_tolerance, Asj_smoothing_settings as, double floor_drop = 0.)
+  /// an ASJ smoothing from the state of quality `q`; `as` brings the
+  /// caller's choices (passes, focus, fixed boundary), the floor (the MSJ −
+  /// `floor_drop`) and guard are set here. With `keep`, the smoother is kept
+  /// there and restarted by the next call. Returns the quality after.
+  Quality_statistics asj_stage(Run_state& st, const Quality_statistics& q, double guard_tolerance,
+                               Asj_smoothing_settings as, double floor_drop = 0.,
+                               std::unique_ptr<Asj_smoother>* keep = nullptr)
   {
     const auto t = Clock::now();
-    const Quality_statistics q = quality_statistics(st.mesh);
     m_visitor.stage_started("asj", 0);
     as.min_sj_floor = q.msj - floor_drop;
     as.max_surface_deviation = guard_tolerance;
     const Surface_guard& guard = *st.guard;
     as.guard = &guard;
     as.time_limit = m_s.time_limit;
-    const Asj_smoothing_report ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
+    Asj_smoothing_report ar;
+    if(!keep) ar = smooth_for_average_quality(*st.topo, st.ts.get(), st.mesh.points, as);
+    else
+    {
+      if(*keep) (*keep)->restart(as);
+      else keep->reset(new Asj_smoother(*st.topo, st.ts.get(), st.mesh.points, as));
+      ar = (*keep)->run();
+    }
     std::ostringstream d;
     d << "ASJ " << ar.asj_before << " -> " << ar.asj_after << " in " << ar.passes << " passes, MSJ kept at "
       << ar.msj_after;
-    report_stage(st, "asj", q, t, ar.passes, d.str());
+    return report_stage(st, "asj", q, t, ar.passes, d.str());
   }
 
   /// the max-min smoothing settings of the schedule, toward `target`
@@ -483,22 +504,21 @@ private:
   /// MSJ are worked on however close the next stage's value is (bunny_in: a
   /// turn's "msj>=0.5" stalled at 0.4996 on the few elements below 0.5 and
   /// ended the turns; aimed at 1 the same turn reached 0.541).
-  void max_min_stage(Run_state& st, double guard_tolerance)
+  Quality_statistics max_min_stage(Run_state& st, const Quality_statistics& q, double guard_tolerance)
   {
     const auto t = Clock::now();
-    const Quality_statistics q = quality_statistics(st.mesh);
     m_visitor.stage_started("max-min", count_below(st.mesh, q.msj + 0.05));
     Worst_element_smoothing polish(*st.topo, st.ts.get(), st.guard.get());
     const Worst_element_smoothing_report wr =
       polish.run(st.mesh.points, max_min_settings(aimed_msj(), guard_tolerance));
     std::ostringstream d;
     d << wr.moves << " moves in " << wr.sweeps << " sweeps, MSJ " << wr.msj_before << " -> " << wr.msj_after;
-    report_stage(st, "max-min", q, t, wr.sweeps, d.str());
+    return report_stage(st, "max-min", q, t, wr.sweeps, d.str());
   }
 
   /// completes the report of a stage that inverts nothing and hands it to the visitor
-  void report_stage(Run_state& st, const std::string& name, const Quality_statistics& before, Clock::time_point t,
-                    int rounds, const std::string& details)
+  Quality_statistics report_stage(Run_state& st, const std::string& name, const Quality_statistics& before,
+                                  Clock::time_point t, int rounds, const std::string& details)
   {
     Stage_report sr;
     sr.name = name;
@@ -511,6 +531,7 @@ private:
     sr.details = details;
     st.res.stages.push_back(sr);
     m_visitor.stage_finished(sr);
+    return after;
   }
 
   /// the surface restoration; returns the number of boundary moves it made
@@ -745,9 +766,8 @@ private:
 
   static std::size_t count_below(const Hex_mesh_arrays& m, double t)
   {
-    std::size_t n = 0;
-    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(scaled_jacobian(m, h) <= t) ++n;
-    return n;
+    const std::vector<double> sj = scaled_jacobians(m);
+    return std::size_t(std::count_if(sj.begin(), sj.end(), [t](double x) { return x <= t; }));
   }
 
   Quality_settings m_s;

@@ -346,19 +346,35 @@ class Asj_smoother
 public:
   Asj_smoother(const Hex_mesh_topology& topo, const Target_surface* target, std::vector<Vec3>& points,
                const Asj_smoothing_settings& s)
-    : m_topo(topo), m_target(target), m_p(points), m_s(s), m_start(points)
+    : m_topo(topo), m_target(target), m_p(points), m_s(s)
   {
     CGAL_precondition(points.size() == topo.number_of_vertices());
     CGAL_precondition(target == nullptr || target->number_of_vertices() == topo.number_of_vertices());
     classify_vertices();
-    m_check_surface = target != nullptr && s.move_boundary && std::isfinite(s.max_surface_deviation);
-    if(m_check_surface && (!s.guard || s.start_deviation_budget > 0.))
+    m_check_surface = checks_surface(s);
+    if(m_check_surface)
       collect_deviation_rings();
     else
       m_ring_off.assign(topo.number_of_vertices() + 1, 0);
-    compute_samples();
-    m_step.assign(topo.number_of_vertices(), 0.1);
     order_vertices();
+    start_from_current_positions();
+  }
+
+  /// Makes the next `run()` a new smoothing from the current positions with
+  /// the settings `s`, keeping what depends only on the mesh and on the
+  /// choices below (the vertex classes, the rings of the built-in deviation
+  /// test, the visit order and its colours): the turns of the quality
+  /// improver run one focused pass after another, each with its own floor,
+  /// budget and focus. `s` must agree with the constructor's settings on
+  /// `move_boundary`, `order` and `block_size`, and check the surface if
+  /// those did.
+  void restart(const Asj_smoothing_settings& s)
+  {
+    CGAL_precondition(s.move_boundary == m_s.move_boundary && s.order == m_s.order && s.block_size == m_s.block_size);
+    CGAL_precondition(!checks_surface(s) || m_check_surface);
+    m_s = s;
+    m_check_surface = checks_surface(s);
+    start_from_current_positions();
   }
 
   Asj_smoothing_report run()
@@ -384,7 +400,7 @@ public:
         std::fill(active.begin(), active.end(), 1); // the objective changed everywhere
         for(std::size_t v = 0; v < nv; ++v) if(m_kind[v] == FIXED) active[v] = 0;
       }
-      for(std::size_t h = 0; h < nh; ++h) m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa);
+      parallel_for_each_index(nh, [&](std::size_t h) { m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa); }, 1024);
       if(time_limit_reached(m_s.time_limit)) break;
       ++rep.passes;
       // one colour at a time, its vertices in parallel (a pass takes up to
@@ -419,12 +435,12 @@ public:
       asj = sum / double(nh);
       if(gain < m_s.min_asj_gain || out_of_time) break;
     }
+    // recomputed from the positions (not from the samples kept up to date):
+    // what the report says is what the mesh has
+    std::vector<double> sj(nh);
+    parallel_for_each_index(nh, [&](std::size_t h) { sj[h] = scaled_jacobian(corners(h)); }, 1024);
     sum = 0.; msj = std::numeric_limits<double>::max();
-    for(std::size_t h = 0; h < nh; ++h)
-    {
-      const double x = scaled_jacobian(corners(h));
-      sum += x; msj = (std::min)(msj, x);
-    }
+    for(double x : sj) { sum += x; msj = (std::min)(msj, x); }
     rep.asj_after = sum / double(nh);
     rep.msj_after = msj;
     rep.seconds = elapsed();
@@ -510,6 +526,20 @@ private:
     m_ring.swap(ring);
   }
 
+  bool checks_surface(const Asj_smoothing_settings& s) const
+  {
+    return m_target != nullptr && s.move_boundary && std::isfinite(s.max_surface_deviation);
+  }
+
+  // what a run starts from: the boundary it received (for the built-in
+  // deviation test), the samples of every hex, the step lengths
+  void start_from_current_positions()
+  {
+    m_start = m_p;
+    compute_samples();
+    m_step.assign(m_topo.number_of_vertices(), 0.1);
+  }
+
   // the 9 samples, the scaled Jacobian and the floor of every hex, and the
   // size of the per-thread trial buffer (9 samples per hex around a vertex)
   void compute_samples()
@@ -519,12 +549,11 @@ private:
     m_sj.resize(nh);
     m_floor.resize(nh);
     m_value.resize(nh);
-    for(std::size_t h = 0; h < nh; ++h)
-    {
+    parallel_for_each_index(nh, [&](std::size_t h) {
       asj_detail::all_samples(corners(h), &m_samples[9 * h]);
       m_sj[h] = asj_detail::exact_minimum(&m_samples[9 * h]);
       m_floor[h] = element_floor(m_s.min_sj_floor, m_sj[h]);
-    }
+    }, 1024);
     std::size_t maxdeg = 0;
     for(std::size_t v = 0; v < nv; ++v)
       maxdeg = (std::max)(maxdeg, std::size_t(m_topo.vertex_corners_end(v) - m_topo.vertex_corners_begin(v)));
@@ -956,7 +985,7 @@ private:
   const Hex_mesh_topology& m_topo;
   const Target_surface* m_target;
   std::vector<Vec3>& m_p;
-  const Asj_smoothing_settings& m_s;
+  Asj_smoothing_settings m_s;
   std::vector<Vec3> m_start;
   std::vector<unsigned char> m_kind;
   std::vector<std::array<std::size_t, 2> > m_line;
