@@ -208,7 +208,7 @@ private:
     // untangler smoothed what needed it, and smoothing a valid boundary only
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
-    st.ts.reset(new Target_surface(st.mesh, m_target_points, m_target_tris, tsp));
+    st.ts.reset(new Target_surface(st.mesh, st.topo->boundary(), m_target_points, m_target_tris, tsp));
   }
 
   bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }

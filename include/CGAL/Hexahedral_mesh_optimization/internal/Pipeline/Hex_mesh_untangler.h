@@ -207,10 +207,10 @@ public:
       std::vector<Vec3> rp;
       rp.reserve(m_s.reference_points->size());
       for(const Vec3& p : *m_s.reference_points) rp.push_back(nz.apply(p));
-      ts.reset(new Target_surface(mesh, rp, *m_s.reference_triangles, tsp));
+      ts.reset(new Target_surface(mesh, topo.boundary(), rp, *m_s.reference_triangles, tsp));
     }
     else
-      ts.reset(new Target_surface(mesh, tsp));
+      ts.reset(new Target_surface(mesh, topo.boundary(), tsp));
 
     const Optimization_schedule& sc = m_s.schedule;
     m_inverted = count_inverted(mesh); // then kept by each stage's report

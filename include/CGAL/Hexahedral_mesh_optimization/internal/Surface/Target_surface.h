@@ -145,7 +145,14 @@ public:
   /// Reference = the boundary of `mesh` itself (scenario 2 of Section 3.1).
   explicit Target_surface(const Hex_mesh_arrays& mesh,
                           const Target_surface_parameters& param = Target_surface_parameters())
-    : param_(param), boundary_(extract_boundary(mesh)), n_vertices_(mesh.number_of_vertices())
+    : Target_surface(mesh, extract_boundary(mesh), param)
+  {}
+
+  /// The same, with the boundary of `mesh` already extracted
+  /// (`extract_boundary(mesh)`, e.g. `Hex_mesh_topology::boundary()`).
+  Target_surface(const Hex_mesh_arrays& mesh, const Hex_mesh_boundary& boundary,
+                 const Target_surface_parameters& param = Target_surface_parameters())
+    : param_(param), boundary_(boundary), n_vertices_(mesh.number_of_vertices())
   {
     std::vector<Vec3> sp;
     std::vector<Tri> st;
@@ -159,8 +166,18 @@ public:
                  const std::vector<Vec3>& reference_points,
                  const std::vector<Tri>& reference_triangles,
                  const Target_surface_parameters& param = Target_surface_parameters())
-    : param_(param), boundary_(extract_boundary(mesh)), n_vertices_(mesh.number_of_vertices())
+    : Target_surface(mesh, extract_boundary(mesh), reference_points, reference_triangles, param)
+  {}
+
+  /// The same, with the boundary of `mesh` already extracted.
+  Target_surface(const Hex_mesh_arrays& mesh,
+                 const Hex_mesh_boundary& boundary,
+                 const std::vector<Vec3>& reference_points,
+                 const std::vector<Tri>& reference_triangles,
+                 const Target_surface_parameters& param = Target_surface_parameters())
+    : param_(param), boundary_(boundary), n_vertices_(mesh.number_of_vertices())
   {
+    CGAL_precondition(boundary.boundary_index.size() == mesh.number_of_vertices());
     build_reference(reference_points, reference_triangles);
     compute_target(mesh.points);
   }
