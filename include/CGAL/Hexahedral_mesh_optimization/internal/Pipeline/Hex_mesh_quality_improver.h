@@ -109,6 +109,8 @@ class Hex_mesh_quality_improver
     Normalization nz;
     /// the reference, model coordinates, cut along (0, 2) as the surface error is measured
     Triangle_surface reference;
+    /// `reference` set up for the checks after each change (built at the first)
+    std::unique_ptr<Reference_distance_index> reference_index;
     /// the surface tolerance in normalised mesh units
     double tolerance = 0.;
     double diagonal = 0.;
@@ -246,9 +248,10 @@ private:
   double measure_error_since(Run_state& st, const std::vector<Vec3>& before, double error_before) const
   {
     if(error_before < 0.) return measure_error(st);
+    if(!st.reference_index) st.reference_index.reset(new Reference_distance_index(st.reference));
     const Normalization& nz = st.nz;
     st.current_error =
-      surface_error_after_change(st.ts->boundary(), before, st.mesh.points, st.reference, error_before * st.diagonal,
+      surface_error_after_change(st.ts->boundary(), before, st.mesh.points, *st.reference_index, error_before * st.diagonal,
                                  [&nz](const Vec3& p) { return nz.undo(p); }) /
       st.diagonal;
     st.error_may_be_bound = true;

@@ -148,17 +148,16 @@ inline std::vector<Soup_triangle> triangles_of(const Triangle_surface& s)
 /// parts, each within about one triangle of `to`, are left out at once.
 /// bunny_in, fertility_gregson11, impeller_stresstest: see the manual's
 /// implementation notes for the figures.
+/// The same, with the triangles of `to` already in an AABB tree (`tree`,
+/// distance queries accelerated).
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
-                                       const Triangle_surface& to, double lower, double error_bound,
-                                       int subdivision_depth = 3)
+                                       const surface_distance_detail::Soup_tree& tree, const Triangle_surface& to,
+                                       double lower, double error_bound, int subdivision_depth = 3)
 {
   namespace PMP = CGAL::Polygon_mesh_processing;
   using namespace surface_distance_detail;
   if(from.empty()) return lower;
   if(to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
-  const std::vector<Soup_triangle> to_triangles = triangles_of(to);
-  Soup_tree tree(to_triangles.begin(), to_triangles.end());
-  tree.accelerate_distance_queries();
   // the centroid's squared distance to `to` (realised), and the bound of the
   // triangle's squared distance through the triangle of `to` closest to it
   auto bound_of = [&tree](const Soup_triangle& t, double& realised2) {
@@ -220,6 +219,54 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   if(rest.number_of_faces() == 0) return realised;
   return (std::max)(realised, PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(rest, to, error_bound));
 }
+
+inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
+                                       const Triangle_surface& to, double lower, double error_bound,
+                                       int subdivision_depth = 3)
+{
+  using namespace surface_distance_detail;
+  if(from.empty()) return lower;
+  if(to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
+  const std::vector<Soup_triangle> to_triangles = triangles_of(to);
+  Soup_tree tree(to_triangles.begin(), to_triangles.end());
+  tree.accelerate_distance_queries();
+  return one_sided_distance_above(from, tree, to, lower, error_bound, subdivision_depth);
+}
+
+/// A reference surface set up once for the repeated checks of a run
+/// (`surface_error_after_change`): its triangles, their AABB tree with
+/// accelerated distance queries, their boxes and its diagonal. Not
+/// copyable: the tree refers into the triangles.
+class Reference_distance_index
+{
+public:
+  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
+
+  explicit Reference_distance_index(const Triangle_surface& reference)
+    : m_surface(reference), m_triangles(surface_distance_detail::triangles_of(reference)),
+      m_tree(m_triangles.begin(), m_triangles.end()), m_diagonal(internal::diagonal(bbox_of(reference)))
+  {
+    m_tree.accelerate_distance_queries();
+    m_boxes.reserve(m_triangles.size());
+    for(std::size_t t = 0; t < m_triangles.size(); ++t) m_boxes.push_back(Box(m_triangles[t].bbox(), t));
+  }
+  Reference_distance_index(const Reference_distance_index&) = delete;
+  Reference_distance_index& operator=(const Reference_distance_index&) = delete;
+
+  const Triangle_surface& surface() const { return m_surface; }
+  const std::vector<surface_distance_detail::Soup_triangle>& triangles() const { return m_triangles; }
+  const surface_distance_detail::Soup_tree& tree() const { return m_tree; }
+  /// the boxes of the triangles, each with its index (box_intersection_d reorders a copy)
+  const std::vector<Box>& boxes() const { return m_boxes; }
+  double diagonal() const { return m_diagonal; }
+
+private:
+  const Triangle_surface& m_surface;
+  std::vector<surface_distance_detail::Soup_triangle> m_triangles;
+  surface_distance_detail::Soup_tree m_tree;
+  std::vector<Box> m_boxes;
+  double m_diagonal;
+};
 
 /// Distances between two triangle surfaces; `relative_error_bound` × the
 /// reference diagonal bounds the error of each one-sided distance. Returns
@@ -299,7 +346,7 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
 /// reference's coordinates.
 template <class Map>
 double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<Vec3>& before,
-                                  const std::vector<Vec3>& after, const Triangle_surface& reference,
+                                  const std::vector<Vec3>& after, const Reference_distance_index& reference,
                                   double error_before, const Map& to_reference_frame,
                                   double relative_error_bound = 1e-4)
 {
@@ -314,8 +361,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   Triangle_surface whole;
   std::vector<Soup_triangle> moved, near_reference;
   auto point = [](const Vec3& p) { return Soup_point(p[0], p[1], p[2]); };
-  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
-  std::vector<Box> old_boxes, reference_boxes;
+  typedef Reference_distance_index::Box Box;
+  std::vector<Box> old_boxes;
   for(std::size_t q : moved_quads)
   {
     std::array<Vec3, 4> c, o;
@@ -334,9 +381,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
     }
     old_boxes.push_back(Box(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), q));
   }
-  const std::vector<Soup_triangle> reference_triangles = surface_distance_detail::triangles_of(reference);
-  for(std::size_t t = 0; t < reference_triangles.size(); ++t)
-    reference_boxes.push_back(Box(reference_triangles[t].bbox(), t));
+  const std::vector<Soup_triangle>& reference_triangles = reference.triangles();
+  std::vector<Box> reference_boxes = reference.boxes();
   std::vector<char> near(reference_triangles.size(), 0);
   CGAL::box_intersection_d(reference_boxes.begin(), reference_boxes.end(), old_boxes.begin(), old_boxes.end(),
                            [&](const Box& r, const Box&) { near[r.info()] = 1; });
@@ -345,11 +391,12 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   std::vector<Vec3> now(after.size());
   for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
   boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02);
-  const double bound = relative_error_bound * diagonal(bbox_of(reference));
+  const double bound = relative_error_bound * reference.diagonal();
   auto other = std::async(std::launch::async, [&] {
     return one_sided_distance_above(near_reference, whole, error_before, bound);
   });
-  const double mesh_to_reference = one_sided_distance_above(moved, reference, error_before, bound);
+  const double mesh_to_reference =
+    one_sided_distance_above(moved, reference.tree(), reference.surface(), error_before, bound);
   return (std::max)(mesh_to_reference, other.get());
 }
 
