@@ -135,7 +135,9 @@ struct Optimization_schedule
   /// changes the turns' path, not their quality on the whole: the 8
   /// published rows took 37.8 s in all with 256, 36.8 s with 1024,
   /// 41.4 s with 2048 and 44.7 s in index order, every row above its
-  /// published MSJ and ASJ (the manual has the table).
+  /// published MSJ and ASJ (the manual has the table). The blocks and their
+  /// colours are set up once, from the positions at the first turn
+  /// (`Asj_smoother::restart`).
   std::size_t turn_block_size = 256;
   int max_turns = 40;
   double turn_focus_band = 0.2;
