@@ -348,8 +348,9 @@ private:
   /// `turn_floor_drop`, halved down to `min_turn_floor_drop`, then 0 again.
   /// A turn that raised the MSJ (by more than `turn_min_kept_gain`) is kept
   /// if its surface error stays within max(tolerance, the error before the
-  /// turns), after a restoration if need be; otherwise it is undone (and the
-  /// guard halved, down to `min_turn_guard`). A turn that raised nothing is
+  /// turns), after a restoration if need be (the guard is then halved, not
+  /// below `min_turn_guard`); otherwise it is undone (and the guard halved;
+  /// below `min_turn_guard` the turns end). A turn that raised nothing is
   /// undone without a surface check. A turn kept with a gain of at least
   /// `turn_min_gain` keeps its drop; any other moves on to the next drop.
   /// The turns end when every drop has failed in a row, or after
@@ -393,7 +394,11 @@ private:
       bool restored = false;
       const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true, &restored);
       if(!kept) now = saved_quality;
-      else if(restored) now = quality_statistics(st.mesh);
+      else if(restored)
+      {
+        now = quality_statistics(st.mesh);
+        m_turn_guard = (std::max)(0.5 * m_turn_guard, sc.min_turn_guard);
+      }
       if(!worth)
       {
         st.mesh.points = saved;
