@@ -139,7 +139,7 @@ public:
   {
     const auto start = Clock::now();
     Optimization_result res;
-    const Hex_mesh_arrays input = mesh;
+    const std::vector<Vec3> input_points = mesh.points; // the hexes never change
     const Quality_statistics q0 = quality_statistics(mesh);
     res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
 
@@ -155,7 +155,7 @@ public:
     for(Vec3& p : mesh.points) p = st.nz.undo(p);
 
     // ---- never make the mesh worse
-    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);
     res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
     res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
                           ? st.current_error

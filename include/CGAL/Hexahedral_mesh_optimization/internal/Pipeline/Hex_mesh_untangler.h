@@ -191,7 +191,7 @@ public:
   {
     const auto start = Clock::now();
     Optimization_result res;
-    const Hex_mesh_arrays input = mesh;
+    const std::vector<Vec3> input_points = mesh.points; // the hexes never change
     const Quality_statistics q0 = quality_statistics(mesh);
     res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
 
@@ -229,11 +229,11 @@ public:
     for(Vec3& p : mesh.points) p = nz.undo(p);
 
     // ---- never make the mesh worse
-    const Quality_statistics q1 = keep_input_if_worse(mesh, input, q0, res);
+    const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);
     res.success = q1.inverted == 0;
     res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
     res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
-    if(measure_surface_error) res.surface_error = surface_error(mesh, input);
+    if(measure_surface_error) res.surface_error = surface_error(mesh, Hex_mesh_arrays{input_points, mesh.hexes});
     res.seconds = since(start);
     return res;
   }

@@ -67,8 +67,9 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
                       }));
 }
 
-/// If `mesh` is worse than `input` (quality `before`), puts the input back
-/// and sets `res.kept_input`; fills the "after" figures and the certificate
+/// If `mesh` is worse than the input (positions `input_points`, the same
+/// hexes: the stages never change them; quality `before`), puts the input
+/// positions back and sets `res.kept_input`; fills the "after" figures and the certificate
 /// of `res` either way and returns the quality of what is returned.
 /// "Worse": more hexes not certified valid (exact_validity.h), more inverted
 /// elements, or as many and an MSJ lower by more than
@@ -77,7 +78,7 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
 /// throw away what the stages gained elsewhere (rockerarm_li12 with the
 /// paper's method: MSJ 0.209 → 0.209, ASJ 0.866 → 0.93, and the input was
 /// returned).
-inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
+inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const std::vector<Vec3>& input_points,
                                               const Quality_statistics& before, Optimization_result& res)
 {
   Quality_statistics after = quality_statistics(mesh);
@@ -89,13 +90,13 @@ inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const Hex_m
   bool input_certified = false;
   if(!worse && !uncertified.empty())
   {
-    input_uncertified = uncertified_hexes(input);
+    input_uncertified = uncertified_hexes(mesh.hexes, input_points);
     input_certified = true;
     worse = uncertified.size() > input_uncertified.size();
   }
   if(worse)
   {
-    mesh = input;
+    mesh.points = input_points;
     after = before;
     res.kept_input = true;
     uncertified = input_certified ? std::move(input_uncertified) : uncertified_hexes(mesh);

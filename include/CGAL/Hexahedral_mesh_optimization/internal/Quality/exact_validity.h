@@ -83,12 +83,21 @@ inline bool certified_valid(const std::array<Vec3, 8>& p)
 }
 
 /// the hexes of `m` that are not certified valid, in index order
-inline std::vector<std::size_t> uncertified_hexes(const Hex_mesh_arrays& m)
+inline std::vector<std::size_t> uncertified_hexes(const std::vector<Hex>& hexes, const std::vector<Vec3>& points)
 {
   std::vector<std::size_t> out;
-  for(std::size_t h = 0; h < m.hexes.size(); ++h)
-    if(!certified_valid(m.corners(h))) out.push_back(h);
+  std::array<Vec3, 8> c;
+  for(std::size_t h = 0; h < hexes.size(); ++h)
+  {
+    for(int i = 0; i < 8; ++i) c[i] = points[hexes[h][i]];
+    if(!certified_valid(c)) out.push_back(h);
+  }
   return out;
+}
+
+inline std::vector<std::size_t> uncertified_hexes(const Hex_mesh_arrays& m)
+{
+  return uncertified_hexes(m.hexes, m.points);
 }
 
 } // namespace internal
