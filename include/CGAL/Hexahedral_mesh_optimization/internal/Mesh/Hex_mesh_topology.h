@@ -19,7 +19,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -73,7 +72,7 @@ public:
   /// order, with their vertices, edges and neighbours): extracted once, for
   /// the target surface and the guards
   const Hex_mesh_boundary& boundary() const { return m_boundary; }
-  /// for each edge, the boundary faces containing it (two for a boundary edge of a manifold boundary)
+  /// the boundary vertices, in index order
   const std::vector<std::size_t>& boundary_vertices() const { return m_boundary_vertices; }
 
   /// the boundary faces around vertex v (indices into boundary_faces(); none

@@ -154,6 +154,7 @@ public:
                  const Target_surface_parameters& param = Target_surface_parameters())
     : param_(param), boundary_(boundary), n_vertices_(mesh.number_of_vertices())
   {
+    CGAL_precondition(boundary.boundary_index.size() == mesh.number_of_vertices());
     std::vector<Vec3> sp;
     std::vector<Tri> st;
     triangulate_boundary(boundary_, mesh.points, Quad_split::both_diagonals, sp, st);

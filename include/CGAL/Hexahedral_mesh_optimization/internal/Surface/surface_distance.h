@@ -147,9 +147,9 @@ inline std::vector<Soup_triangle> triangles_of(const Triangle_surface& s)
 /// lie on other triangles than R, up to an edge length from it), and its
 /// parts, each within about one triangle of `to`, are left out at once.
 /// bunny_in, fertility_gregson11, impeller_stresstest: see the manual's
-/// implementation notes for the figures.
-/// The same, with the triangles of `to` already in an AABB tree (`tree`,
-/// distance queries accelerated).
+/// implementation notes for the figures. `tree` holds the triangles of `to`,
+/// distance queries accelerated (`Reference_distance_index` keeps one for a
+/// whole run).
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
                                        const surface_distance_detail::Soup_tree& tree, const Triangle_surface& to,
                                        double lower, double error_bound, int subdivision_depth = 3)
@@ -220,6 +220,7 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   return (std::max)(realised, PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(rest, to, error_bound));
 }
 
+/// The same, building the tree of `to` for this one call.
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
                                        const Triangle_surface& to, double lower, double error_bound,
                                        int subdivision_depth = 3)
