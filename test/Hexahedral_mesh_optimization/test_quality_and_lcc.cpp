@@ -579,6 +579,26 @@ void test_frame_kernel()
   }
   HMO_CHECK(compared == 20 * 9 * 8);
 
+  // all the weighted sample gradients of a hex at once, against the
+  // per-(sample, corner) gradients
+  for(int trial = 0; trial < 5; ++trial)
+  {
+    const std::array<Vec3, 8> p = perturbed_cube();
+    double f[9], w[9];
+    HI::hex_samples(p, f);
+    for(int s = 0; s < 9; ++s) w[s] = 0.1 * (s + 1) + 0.05 * trial;
+    w[trial] = 0.; // a frame skipped
+    std::array<Vec3, 8> all;
+    for(Vec3& g : all) g = Vec3{0., 0., 0.};
+    HI::add_weighted_sample_gradients(p, f, w, all);
+    for(int c = 0; c < 8; ++c)
+    {
+      Vec3 expected{0., 0., 0.};
+      for(int s = 0; s < 9; ++s) expected = expected + w[s] * HI::hex_sample_gradient(p, s, c, f[s]);
+      HMO_CHECK(HI::norm(all[c] - expected) < 1e-12 * (1. + HI::norm(expected)));
+    }
+  }
+
   // a known sheared hex: x += 0.5 z gives 1/sqrt(1.25) at every sample
   std::array<Vec3, 8> sheared = cube;
   for(Vec3& x : sheared) x[0] += 0.5 * x[2];

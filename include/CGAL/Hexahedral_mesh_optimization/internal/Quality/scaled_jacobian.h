@@ -255,6 +255,33 @@ inline Vec3 hex_sample_gradient(const std::array<Vec3, 8>& p, int s, int c, doub
   return gc;
 }
 
+/// Σ_s w[s] ∂(sample s)/∂(corner c), for the 8 corners c at once, the
+/// samples `f` of the hex `p` given (`hex_samples`); a weight below 1e-12
+/// skips its frame. Each frame's gradient is computed once, where calling
+/// `hex_sample_gradient` for every (sample, corner) pair would compute the
+/// centre frame's 8 times.
+inline void add_weighted_sample_gradients(const std::array<Vec3, 8>& p, const double f[9], const double w[9],
+                                          std::array<Vec3, 8>& gradient)
+{
+  Vec3 ga, gb, gc;
+  for(int s = 0; s < 8; ++s)
+  {
+    if(w[s] < 1e-12) continue;
+    const int* n = hex_corner_edges[s];
+    normalized_triple_product_gradient(p[n[0]] - p[s], p[n[1]] - p[s], p[n[2]] - p[s], f[s], ga, gb, gc);
+    gradient[n[0]] = gradient[n[0]] + w[s] * ga;
+    gradient[n[1]] = gradient[n[1]] + w[s] * gb;
+    gradient[n[2]] = gradient[n[2]] + w[s] * gc;
+    gradient[s] = gradient[s] - w[s] * (ga + gb + gc);
+  }
+  if(w[8] < 1e-12) return;
+  Vec3 x1, x2, x3;
+  principal_axes(p, x1, x2, x3);
+  normalized_triple_product_gradient(x1, x2, x3, f[8], ga, gb, gc);
+  for(int c = 0; c < 8; ++c)
+    gradient[c] = gradient[c] + w[8] * (hex_axis_sign(c, 0) * ga + hex_axis_sign(c, 1) * gb + hex_axis_sign(c, 2) * gc);
+}
+
 /// minimum over the 8 corners only
 inline double corner_scaled_jacobian(const std::array<Vec3, 8>& p)
 {

@@ -40,13 +40,13 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Solvers/Lbfgs_history.h>
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <vector>
 
@@ -325,28 +325,15 @@ private:
 
   void lbfgs(Eigen::VectorXd& x, int iterations) const
   {
-    std::deque<Eigen::VectorXd> s_hist, y_hist;
+    Lbfgs_history history(7);
     Eigen::VectorXd g, g_new;
     double e = energy(x, &g);
     if(!std::isfinite(e)) return;
     for(int it = 0; it < iterations; ++it)
     {
       if((it & 7) == 7 && time_limit_reached(m_time_limit)) break;
-      // two-loop recursion
-      Eigen::VectorXd q = g;
-      std::vector<double> alpha(s_hist.size());
-      for(int i = static_cast<int>(s_hist.size()) - 1; i >= 0; --i)
-      {
-        alpha[i] = s_hist[i].dot(q) / y_hist[i].dot(s_hist[i]);
-        q -= alpha[i] * y_hist[i];
-      }
-      if(!s_hist.empty()) q *= s_hist.back().dot(y_hist.back()) / y_hist.back().squaredNorm();
-      else q *= 1e-4 / (std::max)(g.norm(), 1e-300) ;
-      for(std::size_t i = 0; i < s_hist.size(); ++i)
-      {
-        const double beta = y_hist[i].dot(q) / y_hist[i].dot(s_hist[i]);
-        q += (alpha[i] - beta) * s_hist[i];
-      }
+      Eigen::VectorXd q = history.inverse_hessian_times(g);
+      if(history.empty()) q *= 1e-4 / (std::max)(g.norm(), 1e-300);
       Eigen::VectorXd dir = -q;
       if(dir.dot(g) >= 0.) dir = -g * 1e-4 / (std::max)(g.norm(), 1e-300);
       double step = 1., e_new = 0.;
@@ -359,9 +346,7 @@ private:
         if(std::isfinite(e_new) && e_new <= e + 1e-4 * step * dir.dot(g)) { ok = true; break; }
       }
       if(!ok) break;
-      s_hist.push_back(x_new - x); y_hist.push_back(g_new - g);
-      if(y_hist.back().dot(s_hist.back()) <= 1e-300) { s_hist.pop_back(); y_hist.pop_back(); }
-      if(s_hist.size() > 7) { s_hist.pop_front(); y_hist.pop_front(); }
+      history.push(x_new - x, g_new - g);
       const double de = e - e_new;
       x = x_new; g = g_new; e = e_new;
       // converged: the energy fell by less than this (relative); at 1e-12 the
