@@ -47,6 +47,7 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Asj_smoothing.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Global_asj_smoothing.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_restoration.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Local_optimizer.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_schedule.h>
@@ -429,6 +430,9 @@ private:
   void final_asj_smoothing(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
+    Quality_statistics q = quality_statistics(st.mesh);
+    if(sc.final_asj_global_iterations > 0) q = interior_asj_stage(st, q);
+    if(stopped()) return;
     Asj_smoothing_settings settings;
     settings.max_passes = sc.asj_passes;
     settings.min_asj_gain = sc.asj_min_gain;
@@ -440,7 +444,7 @@ private:
       const std::vector<Vec3> saved = st.mesh.points;
       const double saved_error = st.current_error;
       settings.start_deviation_budget = error_budget(st, m_turn_guard);
-      asj_stage(st, quality_statistics(st.mesh), m_turn_guard * st.tolerance, settings);
+      asj_stage(st, q, m_turn_guard * st.tolerance, settings);
       if(within_bound(st, saved, saved_error, "the final ASJ smoothing", false) || stopped()) return;
     }
     const double error = st.current_error;
@@ -448,6 +452,26 @@ private:
     settings.start_deviation_budget = 0.;
     asj_stage(st, quality_statistics(st.mesh), m_turn_guard * st.tolerance, settings);
     st.current_error = error; // the boundary did not move
+  }
+
+  /// The interior vertices all at once (Global_asj_smoothing.h), never below
+  /// the MSJ reached; the boundary does not move, so the surface error stays.
+  Quality_statistics interior_asj_stage(Run_state& st, const Quality_statistics& q)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const auto t = Clock::now();
+    m_visitor.stage_started("asj-interior", 0);
+    Global_asj_settings gs;
+    gs.min_sj_floor = q.msj;
+    gs.max_iterations = sc.final_asj_global_iterations;
+    gs.min_gain = sc.final_asj_global_min_gain;
+    gs.floor_margin = sc.final_asj_global_floor_margin;
+    gs.time_limit = m_s.time_limit;
+    const Global_asj_report gr = smooth_interior_for_average_quality(*st.topo, st.mesh.points, gs);
+    std::ostringstream d;
+    d << "L-BFGS on " << gr.free_vertices << " interior vertices, " << gr.iterations
+      << " iterations, mean soft minimum " << gr.objective_before << " -> " << gr.objective_after;
+    return report_stage(st, "asj-interior", q, t, gr.iterations, d.str());
   }
 
   /// a "check" stage: `what` was undone, and why
