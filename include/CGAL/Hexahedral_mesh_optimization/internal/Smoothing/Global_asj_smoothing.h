@@ -65,7 +65,7 @@ struct Global_asj_settings
   /// `objective_sharpness`)
   double sharpness = 30.;
   /// interior vertices of a hex within this of its floor stay fixed
-  double floor_margin = 0.05;
+  double floor_margin = 0.02;
   /// L-BFGS iterations at most
   int max_iterations = 100;
   /// stop when the last `gain_window` iterations raised F / (number of
