@@ -211,11 +211,7 @@ public:
       switch(c.type)
       {
       case Vertex_class::regular:
-        closest_on_reference(p, c.anchor, &c.direction);
-        if(dot(c.direction, outward_[bi]) < 0.)
-          c.direction = -1. * c.direction;
-        if(!(squared_norm(c.direction) > 0.)) // cannot happen with non-degenerate triangles
-          c.direction = outward_[bi];
+        c = sliding_constraint(v, p);
         break;
       case Vertex_class::sharp:
         closest_on_feature_line(bi, p, c.anchor, c.direction);
@@ -240,11 +236,7 @@ public:
     case Vertex_class::interior:
       break;
     case Vertex_class::regular:
-      closest_on_reference(p, c.anchor, &c.direction);
-      if(dot(c.direction, outward_[bi]) < 0.)
-        c.direction = -1. * c.direction;
-      if(!(squared_norm(c.direction) > 0.))
-        c.direction = outward_[bi];
+      c = sliding_constraint(v, p);
       break;
     case Vertex_class::sharp:
       closest_on_feature_line(bi, p, c.anchor, c.direction);
@@ -253,6 +245,23 @@ public:
       c.anchor = omega_[bi];
       break;
     }
+    return c;
+  }
+
+  /// The constraint of a regular vertex for the boundary vertex `v` at `p`,
+  /// whatever its class: the closest point on the reference and the normal
+  /// there, oriented outward. A sharp or corner vertex given this constraint
+  /// slides on the surface instead of staying on its feature line or place.
+  Boundary_constraint sliding_constraint(std::size_t v, const Vec3& p) const
+  {
+    Boundary_constraint c;
+    c.type = Vertex_class::regular;
+    const std::size_t bi = boundary_.boundary_index[v];
+    closest_on_reference(p, c.anchor, &c.direction);
+    if(dot(c.direction, outward_[bi]) < 0.)
+      c.direction = -1. * c.direction;
+    if(!(squared_norm(c.direction) > 0.)) // cannot happen with non-degenerate triangles
+      c.direction = outward_[bi];
     return c;
   }
 
