@@ -16,6 +16,7 @@
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/untangle_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_untangler.h>
 
 #include <cmath>
 #include <random>
@@ -164,9 +165,74 @@ static void test_unresolved_elements()
   HMO_CHECK(full.unresolved.size() == full.inverted_after);
 }
 
+/// The surface stage (`pull_back_to_surface`) on a 6^3 grid (spacing 0.025,
+/// the pipeline's normalised scale) whose boundary was blown up by 10 % off
+/// its reference (the cube) and whose centre vertex was pushed through its
+/// cells: the inverted hexes stay as they are, and the boundary still comes
+/// back. Before the inverted hexes were pinned, the one region the
+/// displaced boundary makes refused to move at all.
+static void test_surface_stage_with_inverted_hex()
+{
+  namespace HI = HMO::internal;
+  using HI::operator+;
+  using HI::operator-;
+  using HI::operator*;
+  const int n = 6;
+  const double h = 0.025, side = n * h;
+  HI::Hex_mesh_arrays m;
+  for(int k = 0; k <= n; ++k)
+    for(int j = 0; j <= n; ++j)
+      for(int i = 0; i <= n; ++i) m.points.push_back({i * h, j * h, k * h});
+  m.hexes = hmo_test::structured_hexes(n, n, n);
+  const HI::Hex_mesh_topology topo(m);
+  const HI::Vec3 centre{0.5 * side, 0.5 * side, 0.5 * side};
+  for(std::size_t v = 0; v < m.points.size(); ++v)
+    if(topo.is_boundary_vertex(v)) m.points[v] = centre + 1.1 * (m.points[v] - centre);
+  const std::size_t middle = 3 + 7 * (3 + 7 * 3);
+  m.points[middle][0] += 1.5 * h;
+  // the reference: the cube's 6 faces, 2 triangles each
+  std::vector<HI::Vec3> rp;
+  for(int c = 0; c < 8; ++c) rp.push_back({(c & 1) * side, ((c >> 1) & 1) * side, ((c >> 2) & 1) * side});
+  const std::vector<HI::Tri> rt = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  const HI::Target_surface ts(m, topo.boundary(), rp, rt);
+  auto off_the_cube = [&](const std::vector<HI::Vec3>& p) {
+    double worst = 0.;
+    for(std::size_t v : topo.boundary_vertices())
+    {
+      double d = 0.;
+      for(int k = 0; k < 3; ++k) d = (std::max)(d, (std::max)(p[v][k] - side, -p[v][k]));
+      worst = (std::max)(worst, d);
+    }
+    return worst;
+  };
+  std::vector<std::size_t> inverted;
+  for(std::size_t c = 0; c < m.hexes.size(); ++c)
+    if(HI::is_inverted(HI::scaled_jacobian(m, c))) inverted.push_back(c);
+  HMO_CHECK(!inverted.empty());
+  std::vector<HI::Vec3> p = m.points;
+  std::size_t regions = 0;
+  HI::pull_back_to_surface(topo, ts, p, 0.1 * h, 4, nullptr, &regions);
+  HI::Hex_mesh_arrays after = m;
+  after.points = p;
+  std::size_t inverted_after = 0;
+  for(std::size_t c = 0; c < after.hexes.size(); ++c) inverted_after += HI::is_inverted(HI::scaled_jacobian(after, c));
+  std::size_t pinned_moved = 0;
+  for(std::size_t c : inverted)
+    for(std::size_t v : m.hexes[c]) pinned_moved += p[v] != m.points[v];
+  std::cout << "surface stage with " << inverted.size() << " inverted hexes inside: " << regions
+            << " regions, boundary off the cube " << off_the_cube(m.points) / h << " -> " << off_the_cube(p) / h
+            << " edges" << std::endl;
+  HMO_CHECK(regions > 0);
+  HMO_CHECK(off_the_cube(p) < 0.5 * off_the_cube(m.points));
+  HMO_CHECK(inverted_after <= inverted.size());
+  HMO_CHECK(pinned_moved == 0);
+}
+
 int main(int, char** argv)
 {
   test_unresolved_elements();
+  test_surface_stage_with_inverted_hex();
   // 1. a perturbed 6x6x6 grid with interior vertices pushed across their cells
   {
     Mesh m = grid(6);
