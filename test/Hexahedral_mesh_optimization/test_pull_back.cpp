@@ -202,6 +202,43 @@ void test_unreachable()
   HMO_CHECK(c.report.min_sj_after >= 0.5 * c.report.min_sj_before - 1e-12);
 }
 
+// the relaxed 12^3 block with its centre vertex pushed through its cells:
+// the pull-back goes on around the hexes it inverted, which keep their
+// vertices (before, one inverted hex kept the whole pull-back from starting)
+void test_inverted_inside()
+{
+  const HMO::Hex_mesh_arrays block = grid(12, 12, 12);
+  const HMO::Target_surface ts(block);
+  std::vector<Vec3> pts = block.points;
+  relax(pts, 0.3);
+  const std::size_t centre = 6 + 13 * (6 + 13 * 6);
+  pts[centre][0] += 1.5 / 12.;
+  HMO::Hex_mesh_arrays start = block;
+  start.points = pts;
+  std::vector<std::size_t> inverted;
+  for(std::size_t h = 0; h < block.hexes.size(); ++h)
+    if(HMO::is_inverted(HMO::scaled_jacobian(start, h))) inverted.push_back(h);
+  HMO_CHECK(!inverted.empty());
+  const HMO::Hex_mesh_topology topo(block);
+  HMO::Pull_back_settings s;
+  const double before = max_distance(ts, pts);
+  const HMO::Pull_back_report r = HMO::pull_back_to_target(topo, ts, pts, s);
+  HMO::Hex_mesh_arrays after = block;
+  after.points = pts;
+  std::size_t inverted_after = 0, pinned_moved = 0;
+  for(std::size_t h = 0; h < block.hexes.size(); ++h)
+    inverted_after += HMO::is_inverted(HMO::scaled_jacobian(after, h));
+  for(std::size_t h : inverted)
+    for(std::size_t v : block.hexes[h]) pinned_moved += pts[v] != start.points[v];
+  std::cout << "pull-back with " << inverted.size() << " inverted hexes inside: distance " << before << " -> "
+            << max_distance(ts, pts) << ", reached " << r.reached << ", " << r.iterations << " iterations"
+            << std::endl;
+  HMO_CHECK(r.reached);
+  HMO_CHECK(max_distance(ts, pts) <= 1e-3 * r.mean_edge_length);
+  HMO_CHECK(inverted_after == inverted.size());
+  HMO_CHECK(pinned_moved == 0);
+}
+
 int main(int, char** argv)
 {
   test_grid(HMO::Pull_back_rest_shape::ideal_cube, 3, "grid 12^3, ideal rest, 3 rings");
@@ -209,5 +246,6 @@ int main(int, char** argv)
   test_grid(HMO::Pull_back_rest_shape::ideal_cube, -1, "grid 12^3, ideal rest, whole mesh");
   test_cylinder();
   test_unreachable();
+  test_inverted_inside();
   return hmo_test::report(argv[0]);
 }

@@ -146,7 +146,7 @@ public:
 
     Run_state st(mesh, res);
     set_up(st, original);
-    if(m_s.pull_back && q0.inverted == 0 && !stopped()) pull_back_stage(st);
+    if(m_s.pull_back && !stopped()) pull_back_stage(st); // around what is inverted, if anything (see Pull_back.h)
     if(!stopped()) surface_guard_set_up(st, original);
     if(!stopped() && restoration_stage(st) > 0) st.current_error = -1.;
     if(!stopped()) msj_stages_with_retry(st);
@@ -629,7 +629,9 @@ private:
     }
     Stage_report sr;
     sr.name = "pull-back";
-    sr.msj_after = quality_statistics(st.mesh).msj;
+    const Quality_statistics q = quality_statistics(st.mesh);
+    sr.inverted_before = sr.inverted_after = q.inverted; // what it pins stays as it is
+    sr.msj_after = q.msj;
     sr.seconds = seconds_since(t);
     sr.rounds = pr.iterations;
     std::ostringstream d;

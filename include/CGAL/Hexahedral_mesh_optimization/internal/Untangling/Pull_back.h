@@ -235,7 +235,7 @@ public:
       rep.seconds = seconds_since(start);
       return rep;
     }
-    if(!(rep.min_sj_before > 0.)) // an invalid input: nothing can be guaranteed, leave it
+    if(!(m_valid_min_sj > 0.)) // no valid element: nothing can be guaranteed, leave it
     {
       rep.seconds = seconds_since(start);
       return rep;
@@ -248,7 +248,7 @@ public:
     // relaxed towards min_sj_fraction × that minimum only when the run stalls
     Search s;
     s.fraction = (std::max)(1., m_s.min_sj_fraction);
-    m_floor = (std::max)(0., s.fraction * rep.min_sj_before);
+    m_floor = (std::max)(0., s.fraction * m_valid_min_sj);
     s.best = points;
     s.best_score = rep.distance_before + m_mean_dist;
     s.w = m_s.initial_weight;
@@ -268,7 +268,7 @@ public:
       if(floor_stalled || (!can_grow && s.fraction > m_s.min_sj_fraction))
       {
         s.fraction = (std::max)(m_s.min_sj_fraction, 0.5 * s.fraction);
-        m_floor = (std::max)(0., s.fraction * rep.min_sj_before);
+        m_floor = (std::max)(0., s.fraction * m_valid_min_sj);
         continue; // same region, same weight, from the current state
       }
       if(!can_grow) break;
@@ -316,13 +316,33 @@ private:
     rep.mean_edge_length = m_mean_edge;
     m_initial = points;
     rep.min_sj_before = global_min_sj(points);
+    pin_invalid_hexes(points);
     rep.distance_before = distances(points, dist);
     rep.distance_after = rep.distance_before;
     rep.min_sj_after = rep.min_sj_before;
     const double tol = m_s.tolerance * m_mean_edge;
     for(double d : dist) if(d > tol) ++rep.displaced_vertices;
-    m_snap_floor = (std::max)(0., rep.min_sj_before);
+    m_snap_floor = (std::max)(0., m_valid_min_sj);
     return tol;
+  }
+
+  /// The hexes whose scaled Jacobian is not positive at the start (left
+  /// inverted by the untangling) keep their vertices where they are: no
+  /// region moves them, and the floors are relative to the least scaled
+  /// Jacobian of the others (`m_valid_min_sj`). Without this, one such hex
+  /// kept the whole pull-back from starting, and the boundary stayed off its
+  /// surface (kitten_with_bifur_2 with every vertex perturbed: 0.08 of the
+  /// diagonal).
+  void pin_invalid_hexes(const std::vector<Vec3>& points)
+  {
+    m_pinned.assign(points.size(), 0);
+    m_valid_min_sj = std::numeric_limits<double>::max();
+    for(const Hex& h : m_topo.hexes())
+    {
+      const double sj = scaled_jacobian(corners(points, h));
+      if(sj > 0.) m_valid_min_sj = (std::min)(m_valid_min_sj, sj);
+      else for(std::size_t v : h) m_pinned[v] = 1;
+    }
   }
 
   /// SLIM iterations in the current region until the target is reached, the
@@ -472,7 +492,7 @@ private:
     m_free.clear();
     for(std::size_t v = 0; v < nv; ++v)
     {
-      bool all = m_topo.vertex_corners_begin(v) != m_topo.vertex_corners_end(v);
+      bool all = m_topo.vertex_corners_begin(v) != m_topo.vertex_corners_end(v) && !m_pinned[v];
       for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v) && all; ++c) all = in[c->hex] != 0;
       if(all) { m_local[v] = int(m_free.size()); m_free.push_back(v); }
     }
@@ -908,6 +928,8 @@ private:
   long m_cg_iterations = 0;
   bool m_floor_blocked = false;
   double m_floor = 0., m_snap_floor = 0., m_w = 1., m_last_min_sj = 0., m_mean_dist = 0.;
+  double m_valid_min_sj = 0.;        // least scaled Jacobian of the hexes not pinned
+  std::vector<char> m_pinned;        // per vertex: a vertex of a hex invalid at the start
 };
 
 /// Pulls the boundary of a valid hex mesh back onto the target surface
