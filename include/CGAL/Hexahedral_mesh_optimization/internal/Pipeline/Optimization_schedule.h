@@ -59,6 +59,10 @@ struct Optimization_schedule
   double barrier_weights_relaxed[4] = {100., 10., 1., 1.};
   double barrier_weights_fixed[2] = {1000., 1000.};
   double barrier_sliding_fraction = 0.1;
+  /// `optimize_hex_mesh()`: how many times the untangler and the quality
+  /// stages run again while elements are still inverted
+  /// (`untangle_and_improve_again`)
+  int untangle_again_rounds = 2;
   /// the stage "surface": outer passes, and the residual (in mean edges)
   /// under which a boundary vertex is on the target surface
   int surface_passes = 4;
