@@ -58,9 +58,14 @@ void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& 
     Hex_mesh_arrays trial = arrays;
     Hex_mesh_untangler<Visitor> untangler(u, visitor);
     const Optimization_result r = untangler.run(trial, false);
+    // a hard stop that fired in a round is said even when the round is not kept
+    q.time_limit_reached = q.time_limit_reached || r.time_limit_reached;
+    q.interrupted = q.interrupted || r.interrupted;
     if(r.inverted_after >= q.inverted_after) return;
     Hex_mesh_quality_improver<Visitor> improver(s, visitor);
     const Optimization_result q2 = improver.run(trial, original);
+    q.time_limit_reached = q.time_limit_reached || q2.time_limit_reached;
+    q.interrupted = q.interrupted || q2.interrupted;
     if(q2.inverted_after >= q.inverted_after ||
        !(q2.surface_error <= (std::max)(s.surface_tolerance, q.surface_error)))
       return;
@@ -70,7 +75,10 @@ void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& 
     stages.insert(stages.end(), q2.stages.begin(), q2.stages.end());
     const std::size_t inverted_before = q.inverted_before;
     const double msj_before = q.msj_before, asj_before = q.asj_before, seconds = q.seconds + r.seconds;
+    const bool fired = q.time_limit_reached, interrupted = q.interrupted;
     q = q2;
+    q.time_limit_reached = fired;
+    q.interrupted = interrupted;
     q.stages.swap(stages);
     q.inverted_before = inverted_before;
     q.msj_before = msj_before;
