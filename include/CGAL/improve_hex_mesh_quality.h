@@ -39,13 +39,31 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.reference_triangles = u.reference_triangles;
 }
 
+/// `first` followed by `later` on the mesh `first` left: the stages of both,
+/// the figures after `later`, the seconds of both; the input is kept only if
+/// both kept theirs, and a hard stop that fired in either is said.
+inline void append_run(Optimization_result& first, const Optimization_result& later)
+{
+  first.stages.insert(first.stages.end(), later.stages.begin(), later.stages.end());
+  first.inverted_after = later.inverted_after;
+  first.msj_after = later.msj_after;
+  first.asj_after = later.asj_after;
+  first.surface_error = later.surface_error;
+  first.seconds += later.seconds;
+  first.kept_input = first.kept_input && later.kept_input;
+  first.success = later.success;
+  first.certificate = later.certificate;
+  first.time_limit_reached = first.time_limit_reached || later.time_limit_reached;
+  first.interrupted = first.interrupted || later.interrupted;
+}
+
 /// Untangling and improvement interleaved: while elements are still inverted
 /// after the quality stages (at most `untangle_again_rounds` times), the
 /// untangler runs again on what they left, its boundary now pulled back
 /// toward the surface, then the quality stages; a round is kept only if it
 /// leaves fewer elements inverted, with the surface error within
-/// max(tolerance, the error before it). Its stages are appended to `q`,
-/// whose figures become the round's. All-vertex-perturbed
+/// max(tolerance, the error before it); a kept round is appended to `q`
+/// (`append_run`). All-vertex-perturbed
 /// kitten_with_bifur_2: the untangler run again on the pipeline's output
 /// freed 3 of 3, 2 of 3 and 0 of 1 inverted hexes on three seeds.
 template <class Visitor>
@@ -70,20 +88,8 @@ void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& 
        !(q2.surface_error <= (std::max)(s.surface_tolerance, q.surface_error)))
       return;
     arrays = trial;
-    std::vector<Stage_report> stages = q.stages;
-    stages.insert(stages.end(), r.stages.begin(), r.stages.end());
-    stages.insert(stages.end(), q2.stages.begin(), q2.stages.end());
-    const std::size_t inverted_before = q.inverted_before;
-    const double msj_before = q.msj_before, asj_before = q.asj_before, seconds = q.seconds + r.seconds;
-    const bool fired = q.time_limit_reached, interrupted = q.interrupted;
-    q = q2;
-    q.time_limit_reached = fired;
-    q.interrupted = interrupted;
-    q.stages.swap(stages);
-    q.inverted_before = inverted_before;
-    q.msj_before = msj_before;
-    q.asj_before = asj_before;
-    q.seconds += seconds;
+    append_run(q, r);
+    append_run(q, q2);
   }
 }
 
@@ -127,22 +133,8 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   Hex_mesh_quality_improver<Visitor> improver(s, visitor);
   Optimization_result q = improver.run(arrays, original);
   if(untangle) untangle_and_improve_again(arrays, original, u, s, visitor, q);
-  if(untangle)
-  {
-    result.stages.insert(result.stages.end(), q.stages.begin(), q.stages.end());
-    result.inverted_after = q.inverted_after;
-    result.msj_after = q.msj_after;
-    result.asj_after = q.asj_after;
-    result.surface_error = q.surface_error;
-    result.seconds += q.seconds;
-    result.kept_input = result.kept_input && q.kept_input;
-    result.success = q.success;
-    result.certificate = q.certificate;
-    result.time_limit_reached = result.time_limit_reached || q.time_limit_reached;
-    result.interrupted = result.interrupted || q.interrupted;
-  }
-  else
-    result = q;
+  if(untangle) append_run(result, q);
+  else result = q;
   if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
   if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Adapter::write_back(arrays, mesh, gt);
