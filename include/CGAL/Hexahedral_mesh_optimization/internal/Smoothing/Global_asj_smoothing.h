@@ -121,10 +121,10 @@ public:
     {
       Eigen::VectorXd dir = -descent_direction(history, g);
       if(!(dir.dot(g) < 0.)) { history.clear(); dir = -descent_direction(history, g); }
-      if(!line_search(x, e, g, dir, x_new, g_new)) break;
+      double e_new = e;
+      if(!line_search(x, e, g, dir, x_new, e_new, g_new)) break;
       ++rep.iterations;
       history.push(x_new - x, g_new - g);
-      const double e_new = energy_of_last_trial();
       recent_gains.push_back((e - e_new) / nh);
       if(int(recent_gains.size()) > m_s.gain_window) recent_gains.pop_front();
       x.swap(x_new);
@@ -144,14 +144,14 @@ private:
   // whose hexes break their floor first keeps the free vertices of those
   // hexes where they were (a few times), then is halved.
   bool line_search(const Eigen::VectorXd& x, double e, const Eigen::VectorXd& g, const Eigen::VectorXd& dir,
-                   Eigen::VectorXd& x_new, Eigen::VectorXd& g_new)
+                   Eigen::VectorXd& x_new, double& e_new, Eigen::VectorXd& g_new)
   {
     double step = 1.;
     for(int halving = 0; halving < 20; ++halving, step *= 0.5)
     {
       x_new = x + step * dir;
       evaluate_all(x_new);
-      double e_new = energy();
+      e_new = energy();
       for(int round = 0; round < m_s.floor_reverts && !std::isfinite(e_new); ++round)
       {
         keep_broken_in_place(x, x_new);
@@ -159,7 +159,6 @@ private:
       }
       if(e_new <= e + 1e-4 * (x_new - x).dot(g))
       {
-        m_last_energy = e_new;
         assemble_gradient(g_new);
         return true;
       }
@@ -190,8 +189,6 @@ private:
     again.erase(std::unique(again.begin(), again.end()), again.end());
     parallel_for_each_index(again.size(), [&](std::size_t k) { evaluate_hex(x_new, again[k]); }, 64);
   }
-
-  double energy_of_last_trial() const { return m_last_energy; }
 
   // −H g; the first step moves no vertex by more than `first_step` of its
   // shortest edge
@@ -342,7 +339,6 @@ private:
   std::vector<unsigned char> m_broken; // per active hex: below its floor in the last evaluation
   Eigen::VectorXd m_diagonal;
   double m_fixed_energy = 0.;
-  double m_last_energy = 0.;
   std::vector<std::size_t> m_again;
 };
 
