@@ -612,6 +612,109 @@ void test_culled_distance()
     }
 }
 
+// The bound through the neighbour across an edge (`straddle_bound`), on a
+// connected triangulation of a quarter cylinder: never below the distance
+// sampled densely over random triangles near the surface; on triangles whose
+// corners lie on the surface and that cross one edge of it, far tighter than
+// the single-triangle bound; and the culled distance on that connected
+// surface still gives CGAL's answer.
+void test_straddle_bound()
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  namespace SD = HMO::surface_distance_detail;
+  const int na = 16, nz = 8;
+  auto on_cylinder = [&](double i, double j) {
+    const double a = 1.5707963267948966 * i / na;
+    return Vec3{std::cos(a), std::sin(a), 2. * j / nz};
+  };
+  HMO::Triangle_surface surface;
+  std::vector<HMO::Triangle_surface::Vertex_index> vi;
+  for(int i = 0; i <= na; ++i)
+    for(int j = 0; j <= nz; ++j)
+    {
+      const Vec3 p = on_cylinder(i, j);
+      vi.push_back(surface.add_vertex(HMO::Triangle_surface::Point(p[0], p[1], p[2])));
+    }
+  auto v = [&](int i, int j) { return vi[std::size_t(i * (nz + 1) + j)]; };
+  for(int i = 0; i < na; ++i)
+    for(int j = 0; j < nz; ++j)
+    {
+      surface.add_face(v(i, j), v(i + 1, j), v(i + 1, j + 1));
+      surface.add_face(v(i, j), v(i + 1, j + 1), v(i, j + 1));
+    }
+  HMO_CHECK(surface.number_of_faces() == std::size_t(2 * na * nz));
+  const std::vector<SD::Soup_triangle> triangles = SD::triangles_of(surface);
+  const auto neighbours = SD::face_neighbours(surface);
+  std::size_t inner_edges = 0;
+  for(const auto& n : neighbours)
+    for(std::size_t o : n) inner_edges += o != (std::numeric_limits<std::size_t>::max)();
+  HMO_CHECK(inner_edges == 2 * std::size_t(3 * na * nz - na - nz)); // each inner edge seen from both sides
+  SD::Soup_tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  auto point = [](const Vec3& p) { return SD::Soup_point(p[0], p[1], p[2]); };
+  auto bounds = [&](const SD::Soup_triangle& t, double& single, double& sampled) {
+    const auto hit = tree.closest_point_and_primitive(CGAL::centroid(t));
+    const std::size_t r = std::size_t(hit.second - triangles.begin());
+    single = 0.;
+    for(int k = 0; k < 3; ++k) single = (std::max)(single, CGAL::squared_distance(t.vertex(k), triangles[r]));
+    sampled = 0.;
+    const int n = 40;
+    for(int a = 0; a <= n; ++a)
+      for(int b = 0; a + b <= n; ++b)
+      {
+        const double wa = double(a) / n, wb = double(b) / n;
+        const SD::Soup_point x = t.vertex(0) + wa * (t.vertex(1) - t.vertex(0)) + wb * (t.vertex(2) - t.vertex(0));
+        sampled = (std::max)(sampled, CGAL::squared_distance(x, tree.closest_point(x)));
+      }
+    return SD::straddle_bound(t, r, triangles, neighbours);
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> along(1., double(na) - 2.), up(1., double(nz) - 2.), step(0.2, 1.2),
+    off(-0.01, 0.01);
+  int tighter = 0;
+  for(int trial = 0; trial < 200; ++trial)
+  {
+    // corners on the surface (every other trial: moved off it by up to 0.01)
+    const double i = along(rng), j = up(rng);
+    Vec3 c[3] = {on_cylinder(i, j), on_cylinder(i + step(rng), j + 0.3 * step(rng)),
+                 on_cylinder(i + 0.3 * step(rng), j + step(rng))};
+    if(trial % 2)
+      for(Vec3& p : c) p = p + Vec3{off(rng), off(rng), off(rng)};
+    const SD::Soup_triangle t(point(c[0]), point(c[1]), point(c[2]));
+    double single = 0., sampled = 0.;
+    const double bound = bounds(t, single, sampled);
+    HMO_CHECK(bound >= sampled - 1e-15);
+    HMO_CHECK(bound <= single);
+    if(bound < 0.25 * single) ++tighter;
+  }
+  HMO_CHECK(tighter >= 20);
+  // a triangle across one edge only: corners on the surface, on both sides of
+  // the edge at column 5 between rows 2 and 3
+  {
+    const SD::Soup_triangle t(point(on_cylinder(4.6, 2.2)), point(on_cylinder(5.2, 2.5)),
+                              point(on_cylinder(4.7, 2.6)));
+    double single = 0., sampled = 0.;
+    const double bound = bounds(t, single, sampled);
+    HMO_CHECK(bound >= sampled - 1e-15);
+    HMO_CHECK(std::sqrt(bound) < 0.25 * std::sqrt(single));
+  }
+  // the culled distance on the connected surface, as CGAL computes it
+  HMO::Triangle_surface coarse;
+  for(int i = 0; i < 4; ++i)
+    for(int j = 0; j < 3; ++j)
+      HMO::add_separate_triangle(coarse, on_cylinder(3.7 * i + 0.4, 2. * j + 0.3),
+                                 on_cylinder(3.7 * i + 3.9, 2. * j + 0.5), on_cylinder(3.7 * i + 2.1, 2. * j + 2.2));
+  const double error_bound = 1e-4;
+  const double full = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(coarse, surface, error_bound);
+  for(int depth : {0, 2, 4})
+    for(double lower : {0., 0.5 * full})
+    {
+      const double culled =
+        HMO::one_sided_distance_above(SD::triangles_of(coarse), surface, lower, error_bound, depth);
+      HMO_CHECK(std::abs(culled - (std::max)(lower, full)) <= 2. * error_bound);
+    }
+}
+
 // The reference-fit check: the mesh's own boundary fits; scaled by 1.05
 // about its centre it is distant (a warning); scaled by 10 and moved away,
 // or replaced by a small far-away surface, it is mismatched, with a message
@@ -749,6 +852,7 @@ int main(int, char** argv)
   test_constraints();
   test_surface_error();
   test_culled_distance();
+  test_straddle_bound();
   test_reference_fit();
   test_shared_data();
   return hmo_test::report(argv[0]);

@@ -43,6 +43,7 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <future>
 #include <limits>
@@ -128,6 +129,96 @@ inline std::vector<Soup_triangle> triangles_of(const Triangle_surface& s)
   return t;
 }
 
+/// For each face of `s` (in face order, as `triangles_of`), the face across
+/// each of its edges: entry k is across the edge from its vertex k to its
+/// vertex k + 1 (vertices in `triangles_of`'s order); `none` on a border.
+inline std::vector<std::array<std::size_t, 3> > face_neighbours(const Triangle_surface& s)
+{
+  const std::size_t none = (std::numeric_limits<std::size_t>::max)();
+  std::vector<std::array<std::size_t, 3> > n(s.number_of_faces(), {none, none, none});
+  std::size_t i = 0;
+  for(auto f : s.faces())
+  {
+    // triangles_of lists target(h0), target(h1), target(h2), h0 = halfedge(f):
+    // the edge from vertex k to k + 1 is h_{k+1}
+    Triangle_surface::Halfedge_index h[3];
+    h[0] = s.halfedge(f);
+    h[1] = s.next(h[0]);
+    h[2] = s.next(h[1]);
+    for(int k = 0; k < 3; ++k)
+    {
+      const auto g = s.face(s.opposite(h[(k + 1) % 3]));
+      if(g != Triangle_surface::null_face()) n[i][k] = std::size_t(g);
+    }
+    ++i;
+  }
+  return n;
+}
+
+/// An upper bound of the squared distance from triangle `t` to the surface
+/// made of `triangles`, through `r` (the index of one of them): t is cut by
+/// the plane through one edge of r that bisects the angle between r and its
+/// neighbour across that edge, and each side is bounded by its own triangle
+/// (the distance to one triangle is convex, so it is at most its largest value
+/// at the corners of a convex piece). The single-triangle bound, max over the
+/// corners of t of their distance to r, is loose by up to an edge length
+/// where t straddles an edge of the reference (a boundary quad whose
+/// corners slid across the reference's triangles); this one is close to the
+/// distance there. t crossing two or more edges' planes: the single-triangle
+/// bound.
+inline double straddle_bound(const Soup_triangle& t, std::size_t r, const std::vector<Soup_triangle>& triangles,
+                             const std::vector<std::array<std::size_t, 3> >& neighbours)
+{
+  typedef Soup_kernel::Vector_3 V;
+  const Soup_triangle& R = triangles[r];
+  double single = 0.;
+  for(int k = 0; k < 3; ++k) single = (std::max)(single, CGAL::squared_distance(t.vertex(k), R));
+  if(neighbours.empty()) return single;
+  const V nr = CGAL::cross_product(R.vertex(1) - R.vertex(0), R.vertex(2) - R.vertex(0));
+  const double lr = std::sqrt(nr.squared_length());
+  if(!(lr > 0.)) return single;
+  int crossed = -1;
+  double side[3] = {0., 0., 0.};
+  for(int k = 0; k < 3; ++k)
+  {
+    const std::size_t o = neighbours[r][k];
+    if(o == (std::numeric_limits<std::size_t>::max)()) continue;
+    const Soup_triangle& O = triangles[o];
+    V no = CGAL::cross_product(O.vertex(1) - O.vertex(0), O.vertex(2) - O.vertex(0));
+    const double lo = std::sqrt(no.squared_length());
+    if(!(lo > 0.)) continue;
+    no = no / lo;
+    if(no * nr < 0.) no = -no;
+    const Soup_point& a = R.vertex(k);
+    V m = CGAL::cross_product(R.vertex((k + 1) % 3) - a, nr / lr + no);
+    if(m * (R.vertex((k + 2) % 3) - a) > 0.) m = -m; // r on the negative side
+    double s[3];
+    bool beyond = false;
+    for(int j = 0; j < 3; ++j) { s[j] = m * (t.vertex(j) - a); beyond = beyond || s[j] > 0.; }
+    if(!beyond) continue;
+    if(crossed >= 0) return single; // near a corner of r
+    for(int j = 0; j < 3; ++j) side[j] = s[j];
+    crossed = k;
+  }
+  if(crossed < 0) return single;
+  const Soup_triangle& O = triangles[neighbours[r][crossed]];
+  double u = 0.;
+  for(int j = 0; j < 3; ++j)
+  {
+    const Soup_point& p = t.vertex(j);
+    u = (std::max)(u, CGAL::squared_distance(p, side[j] > 0. ? O : R));
+    const int i = (j + 1) % 3;
+    if((side[j] > 0.) != (side[i] > 0.))
+    {
+      // where the edge (j, i) crosses the plane: on both pieces
+      const double w = side[j] / (side[j] - side[i]);
+      const Soup_point x = p + w * (t.vertex(i) - p);
+      u = (std::max)(u, (std::max)(CGAL::squared_distance(x, R), CGAL::squared_distance(x, O)));
+    }
+  }
+  return (std::min)(u, single);
+}
+
 } // namespace surface_distance_detail
 
 /// max(`lower`, the one-sided Hausdorff distance from the triangles `from`
@@ -144,15 +235,21 @@ inline std::vector<Soup_triangle> triangles_of(const Triangle_surface& s)
 /// `subdivision_depth` levels; only the parts left then go to CGAL. The
 /// single-triangle bound is loose where T spans several triangles of `to`
 /// (a boundary quad that slid across the reference's triangles: the corners
-/// lie on other triangles than R, up to an edge length from it), and its
-/// parts, each within about one triangle of `to`, are left out at once.
-/// bunny_in, fertility_gregson11, impeller_stresstest: see the manual's
-/// implementation notes for the figures. `tree` holds the triangles of `to`,
-/// distance queries accelerated (`Reference_distance_index` keeps one for a
+/// lie on other triangles than R, up to an edge length from it). Where T
+/// crosses one edge of R, `straddle_bound` bounds each side by its own
+/// triangle, which is close to the distance; parts near a corner of R are
+/// left to the subdivision. bunny_in, fertility_gregson11,
+/// impeller_stresstest: see the manual's implementation notes for the
+/// figures. `tree` holds `to_triangles`, the triangles of `to` in face order
+/// (`triangles_of`), distance queries accelerated; `to_neighbours` their
+/// `face_neighbours` (`Reference_distance_index` keeps all three for a
 /// whole run).
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
-                                       const surface_distance_detail::Soup_tree& tree, const Triangle_surface& to,
-                                       double lower, double error_bound, int subdivision_depth = 3)
+                                       const surface_distance_detail::Soup_tree& tree,
+                                       const std::vector<surface_distance_detail::Soup_triangle>& to_triangles,
+                                       const std::vector<std::array<std::size_t, 3> >& to_neighbours,
+                                       const Triangle_surface& to, double lower, double error_bound,
+                                       int subdivision_depth = 4)
 {
   namespace PMP = CGAL::Polygon_mesh_processing;
   using namespace surface_distance_detail;
@@ -160,13 +257,11 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   if(to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
   // the centroid's squared distance to `to` (realised), and the bound of the
   // triangle's squared distance through the triangle of `to` closest to it
-  auto bound_of = [&tree](const Soup_triangle& t, double& realised2) {
+  auto bound_of = [&](const Soup_triangle& t, double& realised2) {
     const Soup_point c = CGAL::centroid(t);
     const auto hit = tree.closest_point_and_primitive(c);
     realised2 = CGAL::squared_distance(c, hit.first);
-    double u = 0.;
-    for(int k = 0; k < 3; ++k) u = (std::max)(u, CGAL::squared_distance(t.vertex(k), *hit.second));
-    return u;
+    return straddle_bound(t, std::size_t(hit.second - to_triangles.begin()), to_triangles, to_neighbours);
   };
   std::vector<double> upper(from.size());
   double lower2 = lower * lower;
@@ -223,7 +318,7 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
 /// The same, building the tree of `to` for this one call.
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
                                        const Triangle_surface& to, double lower, double error_bound,
-                                       int subdivision_depth = 3)
+                                       int subdivision_depth = 4)
 {
   using namespace surface_distance_detail;
   if(from.empty()) return lower;
@@ -231,7 +326,8 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   const std::vector<Soup_triangle> to_triangles = triangles_of(to);
   Soup_tree tree(to_triangles.begin(), to_triangles.end());
   tree.accelerate_distance_queries();
-  return one_sided_distance_above(from, tree, to, lower, error_bound, subdivision_depth);
+  return one_sided_distance_above(from, tree, to_triangles, face_neighbours(to), to, lower, error_bound,
+                                  subdivision_depth);
 }
 
 /// A reference surface set up once for the repeated checks of a run
@@ -245,6 +341,7 @@ public:
 
   explicit Reference_distance_index(const Triangle_surface& reference)
     : m_surface(reference), m_triangles(surface_distance_detail::triangles_of(reference)),
+      m_neighbours(surface_distance_detail::face_neighbours(reference)),
       m_tree(m_triangles.begin(), m_triangles.end()), m_diagonal(internal::diagonal(bbox_of(reference)))
   {
     m_tree.accelerate_distance_queries();
@@ -256,6 +353,8 @@ public:
 
   const Triangle_surface& surface() const { return m_surface; }
   const std::vector<surface_distance_detail::Soup_triangle>& triangles() const { return m_triangles; }
+  /// the faces across the edges of each triangle (`face_neighbours`)
+  const std::vector<std::array<std::size_t, 3> >& neighbours() const { return m_neighbours; }
   const surface_distance_detail::Soup_tree& tree() const { return m_tree; }
   /// the boxes of the triangles, each with its index (box_intersection_d reorders a copy)
   const std::vector<Box>& boxes() const { return m_boxes; }
@@ -264,6 +363,7 @@ public:
 private:
   const Triangle_surface& m_surface;
   std::vector<surface_distance_detail::Soup_triangle> m_triangles;
+  std::vector<std::array<std::size_t, 3> > m_neighbours;
   surface_distance_detail::Soup_tree m_tree;
   std::vector<Box> m_boxes;
   double m_diagonal;
@@ -397,7 +497,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
     return one_sided_distance_above(near_reference, whole, error_before, bound);
   });
   const double mesh_to_reference =
-    one_sided_distance_above(moved, reference.tree(), reference.surface(), error_before, bound);
+    one_sided_distance_above(moved, reference.tree(), reference.triangles(), reference.neighbours(),
+                             reference.surface(), error_before, bound);
   return (std::max)(mesh_to_reference, other.get());
 }
 
