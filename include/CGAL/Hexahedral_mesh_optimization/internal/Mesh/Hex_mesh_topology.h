@@ -18,6 +18,8 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <stdexcept>
 #include <array>
 #include <utility>
 #include <vector>
@@ -31,12 +33,16 @@ namespace internal {
 class Hex_mesh_topology
 {
 public:
-  /// (hex, local corner) incidence
-  struct Corner { std::size_t hex; int local; };
+  /// (hex, local corner) incidence; 32-bit: the 8 corners of 1M hexes take
+  /// 64 MB instead of 128 (filling fresh memory is much of the set-up)
+  struct Corner { std::uint32_t hex; std::int32_t local; };
 
+  /// \pre fewer than 2^32 vertices and 2^28 hexes (12 edges each: the 32-bit indices inside)
   explicit Hex_mesh_topology(const Hex_mesh_arrays& m)
     : m_nv(m.points.size()), m_hexes(m.hexes)
   {
+    if(m_nv >= (std::size_t(1) << 32) || m_hexes.size() >= (std::size_t(1) << 28))
+      throw std::length_error("Hex_mesh_topology: more than 2^32 vertices or 2^28 hexahedra");
     build_vertex_hexes();
     build_edges();
     build_boundary();
@@ -53,13 +59,13 @@ public:
 
   const std::array<std::size_t, 2>& edge(std::size_t e) const { return m_edges[e]; }
   /// edge id of local edge k (index into hex_edges) of hex h
-  std::size_t hex_edge(std::size_t h, int k) const { return m_hex_edges[h][k]; }
+  std::size_t hex_edge(std::size_t h, int k) const { return std::size_t(m_hex_edges[h][k]); }
   /// edge id between two vertices known to be adjacent
   std::size_t edge_id(std::size_t a, std::size_t b) const
   {
     const std::size_t k = sorted_edge(a, b);
     CGAL_precondition(k != std::size_t(-1));
-    return m_edge_of_sorted[k];
+    return std::size_t(m_edge_of_sorted[k]);
   }
   /// number of hexes around edge e
   int edge_valence(std::size_t e) const { return m_edge_valence[e]; }
@@ -133,7 +139,7 @@ private:
 
   void build_vertex_hexes()
   {
-    build_incidence(m_hexes, m_vh_off, m_vh, [](std::size_t h, int i) { return Corner{h, i}; });
+    build_incidence(m_hexes, m_vh_off, m_vh, [](std::size_t h, int i) { return Corner{std::uint32_t(h), i}; });
   }
 
   // The edges, without hashing (a hash map of the 12 edges of every hex
@@ -144,7 +150,7 @@ private:
   void build_edges()
   {
     m_upper_off.assign(m_nv + 1, 0);
-    std::vector<std::size_t> scratch;
+    std::vector<Index> scratch;
     for(int fill = 0; fill < 2; ++fill) // count, then fill
     {
       if(fill) m_upper.resize(m_upper_off[m_nv]);
@@ -155,7 +161,7 @@ private:
           for(int k = 0; k < 3; ++k)
           {
             const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
-            if(w > v) scratch.push_back(w);
+            if(w > v) scratch.push_back(Index(w));
           }
         std::sort(scratch.begin(), scratch.end());
         scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
@@ -163,7 +169,7 @@ private:
         else std::copy(scratch.begin(), scratch.end(), m_upper.begin() + std::ptrdiff_t(m_upper_off[v]));
       }
     }
-    const std::size_t none = std::size_t(-1);
+    const Index none = Index(-1);
     m_edge_of_sorted.assign(m_upper.size(), none);
     m_edges.reserve(m_upper.size());
     m_edge_valence.reserve(m_upper.size());
@@ -172,10 +178,10 @@ private:
       for(int k = 0; k < 12; ++k)
       {
         const std::size_t a = m_hexes[h][hex_edges[k][0]], b = m_hexes[h][hex_edges[k][1]];
-        std::size_t& id = m_edge_of_sorted[sorted_edge(a, b)];
+        Index& id = m_edge_of_sorted[sorted_edge(a, b)];
         if(id == none)
         {
-          id = m_edges.size();
+          id = Index(m_edges.size());
           m_edges.push_back({(std::min)(a, b), (std::max)(a, b)});
           m_edge_valence.push_back(0);
         }
@@ -191,7 +197,7 @@ private:
     const auto first = m_upper.begin() + std::ptrdiff_t(m_upper_off[a]),
                last = m_upper.begin() + std::ptrdiff_t(m_upper_off[a + 1]);
     const auto it = std::lower_bound(first, last, b);
-    return it != last && *it == b ? std::size_t(it - m_upper.begin()) : std::size_t(-1);
+    return it != last && *it == Index(b) ? std::size_t(it - m_upper.begin()) : std::size_t(-1);
   }
 
   void build_boundary()
@@ -223,8 +229,11 @@ private:
   std::vector<Corner> m_vh;
   std::vector<std::array<std::size_t, 2> > m_edges;
   std::vector<int> m_edge_valence;
-  std::vector<std::size_t> m_upper_off, m_upper, m_edge_of_sorted; // see build_edges
-  std::vector<std::array<std::size_t, 12> > m_hex_edges;
+  // 32-bit where there is one entry per edge or per hex edge (see `Corner`)
+  typedef std::uint32_t Index;
+  std::vector<std::size_t> m_upper_off; // see build_edges
+  std::vector<Index> m_upper, m_edge_of_sorted;
+  std::vector<std::array<Index, 12> > m_hex_edges;
   std::vector<char> m_boundary_vertex, m_boundary_edge;
   Hex_mesh_boundary m_boundary;
   std::vector<std::array<std::size_t, 4> > m_boundary_faces;

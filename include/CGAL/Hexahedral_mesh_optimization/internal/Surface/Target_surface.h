@@ -105,6 +105,11 @@ struct Target_surface_parameters
   /// fraction of the iterations, at the start, during which features are
   /// ignored at the vertices of folded (non-convex) boundary quads
   double masked_fraction = 0.5;
+  /// the smoothing stops early once an iteration moves no vertex by more
+  /// than this fraction of the mean boundary edge length (a boundary the
+  /// smoothing leaves where it is, such as a grid's flat faces: 20 iterations
+  /// cost 1.4 s on a 1M-hex grid and moved nothing)
+  double smoothing_convergence = 1e-9;
   /// project after every smoothing step (true) or once at the end
   bool project_every_iteration = true;
   /// θ in degrees: an edge is sharp when its dihedral angle is below θ (180° = flat)
@@ -531,12 +536,27 @@ private:
     std::vector<unsigned char> sharp;
     std::vector<std::size_t> degree;
     std::vector<Vec3> last_projection;
+    // the early stop: only once the features at folded quads count (if any)
+    const bool folded = std::find(mask.begin(), mask.end(), 1) != mask.end();
+    double still = 0.; // squared: a move this small is none
+    {
+      double sum = 0.;
+      for(const auto& e : boundary_.edges) sum += norm(mesh_points[e[0]] - mesh_points[e[1]]);
+      const double mean = boundary_.edges.empty() ? 0. : sum / double(boundary_.edges.size());
+      still = CGAL::square(param_.smoothing_convergence * mean);
+    }
     for(unsigned int it = 0; it < iters; ++it)
     {
       detect_features(P, param_.smoothing_feature_angle, sharp, degree, it < masked ? &mask : nullptr);
       vertex_normals(P, normals);
       parallel_for_each_index(nb, [&](std::size_t bi) { Q[bi] = smoothing_step(P, bi, sharp, degree, normals); }, 256);
-      if(param_.project_every_iteration || it + 1 == iters)
+      bool converged = false;
+      if(!param_.project_every_iteration && it + 1 < iters && (!folded || it + 1 >= masked))
+      {
+        converged = true;
+        for(std::size_t bi = 0; bi < nb && converged; ++bi) converged = squared_norm(Q[bi] - P[bi]) <= still;
+      }
+      if(param_.project_every_iteration || it + 1 == iters || converged)
       {
         // each query starts from the vertex's last projection (a point of
         // the reference): the same closest points, without the tree's
@@ -548,8 +568,14 @@ private:
           else closest_on_reference(Q[bi], Q[bi]);
         }, 256);
         last_projection = Q;
+        if(param_.project_every_iteration && (!folded || it + 1 >= masked))
+        {
+          converged = true;
+          for(std::size_t bi = 0; bi < nb && converged; ++bi) converged = squared_norm(Q[bi] - P[bi]) <= still;
+        }
       }
       std::swap(P, Q);
+      if(converged) break;
     }
     if(iters == 0)
       for(std::size_t bi = 0; bi < nb; ++bi)
