@@ -140,12 +140,20 @@ inline void collect_boundary_quads(const std::vector<Hex>& hexes, std::size_t nu
                                    Hex_mesh_boundary& b)
 {
   typedef Hex_mesh_boundary::Quad Quad;
-  std::vector<std::size_t> boundary_face_ids;
-  for_each_face_group(hexes, number_of_vertices, [&](const Quad&, const std::size_t* ids, std::size_t count) {
-    if(count == 1) boundary_face_ids.push_back(ids[0]);
-    else if(count > 2) ++b.number_of_overshared_faces;
+  // one flag per face id, each written by its own group only: the groups
+  // run in parallel, and the ids come out in increasing order
+  enum : char { inner = 0, once = 1, overshared = 2 };
+  std::vector<char> kind(6 * hexes.size(), inner);
+  for_each_face_group_in_parallel(hexes, number_of_vertices, [&kind](const Quad&, const std::size_t* ids, std::size_t count) {
+    if(count == 1) kind[ids[0]] = once;
+    else if(count > 2) kind[ids[0]] = overshared;
   });
-  std::sort(boundary_face_ids.begin(), boundary_face_ids.end());
+  std::vector<std::size_t> boundary_face_ids;
+  for(std::size_t id = 0; id < kind.size(); ++id)
+  {
+    if(kind[id] == once) boundary_face_ids.push_back(id);
+    else if(kind[id] == overshared) ++b.number_of_overshared_faces;
+  }
   const std::size_t nq = boundary_face_ids.size();
   b.quads.resize(nq);
   b.quad_hex.resize(nq);

@@ -15,12 +15,14 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
-#include <array>
 #include <utility>
 #include <vector>
 
@@ -146,48 +148,98 @@ private:
   // took 2.5 s of a 1M-hex grid's 3.1 s set-up): the neighbours above each
   // vertex, sorted (`m_upper_off`, `m_upper`), give every edge a place
   // (a, b > a) -> its index in that list; the edge ids are then handed out in
-  // the order the hexes first meet the edges.
+  // the order the hexes first meet the edges. The first meeting of a place
+  // is the least 12 h + k over the hex edges (h, k) there; each hex edge that
+  // is a first meeting brings a new id, numbered by a prefix sum over the
+  // hexes. Every pass runs over vertices or hexes in parallel and writes only
+  // its own entries (or an atomic minimum): the ids do not depend on the
+  // threads.
   void build_edges()
   {
+    const std::size_t block = 4096;
+    auto for_each_vertex_block = [&](auto f) {
+      parallel_for_each_index((m_nv + block - 1) / block, [&](std::size_t b) {
+        std::vector<Index> scratch;
+        for(std::size_t v = b * block; v < (std::min)(m_nv, (b + 1) * block); ++v) f(v, scratch);
+      });
+    };
+    // the neighbours above v, sorted, in `scratch`
+    auto upper_of = [&](std::size_t v, std::vector<Index>& scratch) {
+      scratch.clear();
+      for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
+        for(int k = 0; k < 3; ++k)
+        {
+          const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
+          if(w > v) scratch.push_back(Index(w));
+        }
+      std::sort(scratch.begin(), scratch.end());
+      scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+    };
     m_upper_off.assign(m_nv + 1, 0);
-    std::vector<Index> scratch;
-    for(int fill = 0; fill < 2; ++fill) // count, then fill
-    {
-      if(fill) m_upper.resize(m_upper_off[m_nv]);
-      for(std::size_t v = 0; v < m_nv; ++v)
-      {
-        scratch.clear();
-        for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
-          for(int k = 0; k < 3; ++k)
-          {
-            const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
-            if(w > v) scratch.push_back(Index(w));
-          }
-        std::sort(scratch.begin(), scratch.end());
-        scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-        if(!fill) m_upper_off[v + 1] = m_upper_off[v] + scratch.size();
-        else std::copy(scratch.begin(), scratch.end(), m_upper.begin() + std::ptrdiff_t(m_upper_off[v]));
-      }
-    }
-    const Index none = Index(-1);
-    m_edge_of_sorted.assign(m_upper.size(), none);
-    m_edges.reserve(m_upper.size());
-    m_edge_valence.reserve(m_upper.size());
-    m_hex_edges.resize(m_hexes.size());
-    for(std::size_t h = 0; h < m_hexes.size(); ++h)
+    for_each_vertex_block([&](std::size_t v, std::vector<Index>& scratch) {
+      upper_of(v, scratch);
+      m_upper_off[v + 1] = scratch.size();
+    });
+    for(std::size_t v = 0; v < m_nv; ++v) m_upper_off[v + 1] += m_upper_off[v];
+    const std::size_t ne = m_upper_off[m_nv];
+    m_upper.resize(ne);
+    for_each_vertex_block([&](std::size_t v, std::vector<Index>& scratch) {
+      upper_of(v, scratch);
+      std::copy(scratch.begin(), scratch.end(), m_upper.begin() + std::ptrdiff_t(m_upper_off[v]));
+    });
+
+    // the place of every hex edge, and the first meeting of every place
+    const std::size_t nh = m_hexes.size();
+    m_hex_edges.resize(nh);
+    std::vector<std::atomic<Index> > first(ne);
+    parallel_for_each_index(ne, [&](std::size_t p) { first[p].store(Index(-1), std::memory_order_relaxed); }, block);
+    parallel_for_each_index(nh, [&](std::size_t h) {
       for(int k = 0; k < 12; ++k)
       {
-        const std::size_t a = m_hexes[h][hex_edges[k][0]], b = m_hexes[h][hex_edges[k][1]];
-        Index& id = m_edge_of_sorted[sorted_edge(a, b)];
-        if(id == none)
-        {
-          id = Index(m_edges.size());
-          m_edges.push_back({(std::min)(a, b), (std::max)(a, b)});
-          m_edge_valence.push_back(0);
-        }
-        m_hex_edges[h][k] = id;
-        ++m_edge_valence[id];
+        const std::size_t place = sorted_edge(m_hexes[h][hex_edges[k][0]], m_hexes[h][hex_edges[k][1]]);
+        m_hex_edges[h][k] = Index(place);
+        const Index meeting = Index(12 * h + std::size_t(k));
+        Index now = first[place].load(std::memory_order_relaxed);
+        while(meeting < now && !first[place].compare_exchange_weak(now, meeting, std::memory_order_relaxed)) {}
       }
+    }, block);
+    auto is_first = [&](std::size_t h, int k) {
+      return first[m_hex_edges[h][k]].load(std::memory_order_relaxed) == Index(12 * h + std::size_t(k));
+    };
+    // the ids: the new edges of the hexes before h come first
+    std::vector<Index> new_before(nh + 1, 0);
+    parallel_for_each_index(nh, [&](std::size_t h) {
+      Index n = 0;
+      for(int k = 0; k < 12; ++k) n += Index(is_first(h, k));
+      new_before[h + 1] = n;
+    }, block);
+    for(std::size_t h = 0; h < nh; ++h) new_before[h + 1] += new_before[h];
+    m_edges.resize(ne);
+    m_edge_of_sorted.resize(ne);
+    parallel_for_each_index(nh, [&](std::size_t h) {
+      Index id = new_before[h];
+      for(int k = 0; k < 12; ++k)
+        if(is_first(h, k))
+        {
+          const std::size_t a = m_hexes[h][hex_edges[k][0]], b = m_hexes[h][hex_edges[k][1]];
+          m_edge_of_sorted[m_hex_edges[h][k]] = id;
+          m_edges[id] = {(std::min)(a, b), (std::max)(a, b)};
+          ++id;
+        }
+    }, block);
+    parallel_for_each_index(nh, [&](std::size_t h) {
+      for(int k = 0; k < 12; ++k) m_hex_edges[h][k] = m_edge_of_sorted[m_hex_edges[h][k]];
+    }, block);
+    // the valences, from the lower end of each edge (one task writes them)
+    m_edge_valence.assign(ne, 0);
+    for_each_vertex_block([&](std::size_t v, std::vector<Index>&) {
+      for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
+        for(int k = 0; k < 3; ++k)
+        {
+          const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
+          if(w > v) ++m_edge_valence[m_edge_of_sorted[sorted_edge(v, w)]];
+        }
+    });
   }
 
   // the place of edge (a, b) among the neighbours above min(a, b), or -1
