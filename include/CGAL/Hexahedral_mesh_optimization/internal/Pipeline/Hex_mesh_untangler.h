@@ -441,8 +441,9 @@ private:
 
   static std::vector<std::size_t> inverted_hexes(const Hex_mesh_arrays& m)
   {
+    const std::vector<double> sj = scaled_jacobians(m); // on all threads
     std::vector<std::size_t> bad;
-    for(std::size_t h = 0; h < m.hexes.size(); ++h) if(is_inverted(scaled_jacobian(m, h))) bad.push_back(h);
+    for(std::size_t h = 0; h < sj.size(); ++h) if(is_inverted(sj[h])) bad.push_back(h);
     return bad;
   }
 
