@@ -18,6 +18,11 @@
 #include <CGAL/untangle_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_untangler.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -229,8 +234,60 @@ static void test_surface_stage_with_inverted_hex()
   HMO_CHECK(pinned_moved == 0);
 }
 
+// The topology's edges, on a 7 × 5 × 4 grid whose hexes are shuffled: as
+// many as the grid has, each hex edge's id names its two vertices, the ids
+// in the order the hexes first meet the edges, the valences 4 / 2 / 1 inside,
+// on a face and on the box's edges, and the same ids on one thread.
+static void test_topology_edges()
+{
+  namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+  const std::size_t nx = 7, ny = 5, nz = 4;
+  HMOI::Hex_mesh_arrays m = hmo_test::grid(nx, ny, nz);
+  std::mt19937 rng(3);
+  std::shuffle(m.hexes.begin(), m.hexes.end(), rng);
+  auto check = [&](const HMOI::Hex_mesh_topology& t) {
+    HMO_CHECK(t.number_of_edges() ==
+              nx * (ny + 1) * (nz + 1) + (nx + 1) * ny * (nz + 1) + (nx + 1) * (ny + 1) * nz);
+    std::size_t next = 0;
+    std::vector<char> met(t.number_of_edges(), 0);
+    std::vector<int> valence(t.number_of_edges(), 0);
+    for(std::size_t h = 0; h < m.hexes.size(); ++h)
+      for(int k = 0; k < 12; ++k)
+      {
+        const std::size_t e = t.hex_edge(h, k);
+        const std::size_t a = m.hexes[h][HMOI::hex_edges[k][0]], b = m.hexes[h][HMOI::hex_edges[k][1]];
+        HMO_CHECK(e < t.number_of_edges());
+        HMO_CHECK(t.edge(e)[0] == (std::min)(a, b) && t.edge(e)[1] == (std::max)(a, b));
+        HMO_CHECK(t.edge_id(a, b) == e);
+        if(!met[e]) { HMO_CHECK(e == next); ++next; met[e] = 1; }
+        ++valence[e];
+      }
+    for(std::size_t e = 0; e < t.number_of_edges(); ++e)
+    {
+      HMO_CHECK(valence[e] == t.edge_valence(e));
+      int on_box = 0;
+      for(int d = 0; d < 3; ++d)
+      {
+        const double mid = 0.5 * (m.points[t.edge(e)[0]][d] + m.points[t.edge(e)[1]][d]);
+        on_box += std::abs(mid) < 1e-12 || std::abs(mid - 1.) < 1e-12;
+      }
+      HMO_CHECK(valence[e] == (on_box == 0 ? 4 : on_box == 1 ? 2 : 1));
+    }
+  };
+  const HMOI::Hex_mesh_topology threads(m);
+  check(threads);
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const HMOI::Hex_mesh_topology one(m);
+  check(one);
+  for(std::size_t h = 0; h < m.hexes.size(); ++h)
+    for(int k = 0; k < 12; ++k) HMO_CHECK(one.hex_edge(h, k) == threads.hex_edge(h, k));
+#endif
+}
+
 int main(int, char** argv)
 {
+  test_topology_edges();
   test_unresolved_elements();
   test_surface_stage_with_inverted_hex();
   // 1. a perturbed 6x6x6 grid with interior vertices pushed across their cells
