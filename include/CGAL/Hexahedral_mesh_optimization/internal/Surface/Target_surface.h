@@ -538,24 +538,21 @@ private:
     std::vector<Vec3> last_projection;
     // the early stop: only once the features at folded quads count (if any)
     const bool folded = std::find(mask.begin(), mask.end(), 1) != mask.end();
-    double still = 0.; // squared: a move this small is none
-    {
-      double sum = 0.;
-      for(const auto& e : boundary_.edges) sum += norm(mesh_points[e[0]] - mesh_points[e[1]]);
-      const double mean = boundary_.edges.empty() ? 0. : sum / double(boundary_.edges.size());
-      still = CGAL::square(param_.smoothing_convergence * mean);
-    }
+    const double still = CGAL::square( // squared: a move this small is none
+      param_.smoothing_convergence * mean_boundary_edge([&mesh_points](std::size_t v) { return mesh_points[v]; }));
+    auto moved_nothing = [&] {
+      for(std::size_t bi = 0; bi < nb; ++bi)
+        if(squared_norm(Q[bi] - P[bi]) > still) return false;
+      return true;
+    };
     for(unsigned int it = 0; it < iters; ++it)
     {
       detect_features(P, param_.smoothing_feature_angle, sharp, degree, it < masked ? &mask : nullptr);
       vertex_normals(P, normals);
       parallel_for_each_index(nb, [&](std::size_t bi) { Q[bi] = smoothing_step(P, bi, sharp, degree, normals); }, 256);
-      bool converged = false;
-      if(!param_.project_every_iteration && it + 1 < iters && (!folded || it + 1 >= masked))
-      {
-        converged = true;
-        for(std::size_t bi = 0; bi < nb && converged; ++bi) converged = squared_norm(Q[bi] - P[bi]) <= still;
-      }
+      const bool may_stop = !folded || it + 1 >= masked;
+      // (projected once at the end: a step that moved nothing is the end)
+      bool converged = may_stop && !param_.project_every_iteration && it + 1 < iters && moved_nothing();
       if(param_.project_every_iteration || it + 1 == iters || converged)
       {
         // each query starts from the vertex's last projection (a point of
@@ -568,11 +565,7 @@ private:
           else closest_on_reference(Q[bi], Q[bi]);
         }, 256);
         last_projection = Q;
-        if(param_.project_every_iteration && (!folded || it + 1 >= masked))
-        {
-          converged = true;
-          for(std::size_t bi = 0; bi < nb && converged; ++bi) converged = squared_norm(Q[bi] - P[bi]) <= still;
-        }
+        if(param_.project_every_iteration && may_stop) converged = moved_nothing();
       }
       std::swap(P, Q);
       if(converged) break;
@@ -637,11 +630,17 @@ private:
       for(Vec3& n : outward_)
         n = -1. * n;
 
-    mean_edge_length_ = 0.;
-    for(const auto& e : boundary_.edges)
-      mean_edge_length_ += norm(omega_[bidx(e[1])] - omega_[bidx(e[0])]);
-    if(!boundary_.edges.empty())
-      mean_edge_length_ /= double(boundary_.edges.size());
+    mean_edge_length_ = mean_boundary_edge([this](std::size_t v) { return omega_[bidx(v)]; });
+  }
+
+  /// the mean length of the boundary edges, `point(v)` the position of
+  /// mesh vertex v
+  template <class Point_of>
+  double mean_boundary_edge(Point_of point) const
+  {
+    double sum = 0.;
+    for(const auto& e : boundary_.edges) sum += norm(point(e[1]) - point(e[0]));
+    return boundary_.edges.empty() ? 0. : sum / double(boundary_.edges.size());
   }
 
   // ------------------------------------------------------------ features
