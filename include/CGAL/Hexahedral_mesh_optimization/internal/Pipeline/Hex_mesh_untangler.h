@@ -426,8 +426,16 @@ private:
   {
     auto count = [&] {
       std::size_t n = 0;
-      for(std::size_t h : region.hexes) if(is_inverted(scaled_jacobian(mesh, h))) ++n;
-      return n;
+      if(region.hexes.size() < Barrier_untangler::parallel_energy_hexes)
+      {
+        for(std::size_t h : region.hexes) if(is_inverted(scaled_jacobian(mesh, h))) ++n;
+        return n;
+      }
+      std::vector<unsigned char> inverted(region.hexes.size()); // a large region: on all threads
+      parallel_for_each_index(region.hexes.size(), [&](std::size_t i) {
+        inverted[i] = is_inverted(scaled_jacobian(mesh, region.hexes[i])) ? 1 : 0;
+      }, 1024);
+      return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
     };
     const std::size_t before = count();
     if(before == 0) return;

@@ -31,16 +31,18 @@ public:
   explicit Lbfgs_history(std::size_t capacity) : m_capacity(capacity) {}
 
   bool empty() const { return m_s.empty(); }
-  void clear() { m_s.clear(); m_y.clear(); }
+  void clear() { m_s.clear(); m_y.clear(); m_ys.clear(); }
 
   /// adds the pair of the last step; a pair with y·s ≤ 0 (no positive
   /// curvature along s) is left out, the oldest goes beyond the capacity
   void push(Eigen::VectorXd s, Eigen::VectorXd y)
   {
-    if(y.dot(s) <= 1e-300) return;
+    const double ys = y.dot(s);
+    if(ys <= 1e-300) return;
     m_s.push_back(std::move(s));
     m_y.push_back(std::move(y));
-    if(m_s.size() > m_capacity) { m_s.pop_front(); m_y.pop_front(); }
+    m_ys.push_back(ys);
+    if(m_s.size() > m_capacity) { m_s.pop_front(); m_y.pop_front(); m_ys.pop_front(); }
   }
 
   /// H g by the two-loop recursion; D g when there is no pair yet (the
@@ -51,18 +53,18 @@ public:
     std::vector<double> alpha(m_s.size());
     for(int i = static_cast<int>(m_s.size()) - 1; i >= 0; --i)
     {
-      alpha[i] = m_s[i].dot(q) / m_y[i].dot(m_s[i]);
+      alpha[i] = m_s[i].dot(q) / m_ys[i];
       q -= alpha[i] * m_y[i];
     }
     if(diagonal) q = diagonal->cwiseProduct(q);
     if(!m_s.empty())
     {
       const double yDy = diagonal ? m_y.back().dot(diagonal->cwiseProduct(m_y.back())) : m_y.back().squaredNorm();
-      q *= m_s.back().dot(m_y.back()) / yDy;
+      q *= m_ys.back() / yDy;
     }
     for(std::size_t i = 0; i < m_s.size(); ++i)
     {
-      const double beta = m_y[i].dot(q) / m_y[i].dot(m_s[i]);
+      const double beta = m_y[i].dot(q) / m_ys[i];
       q += (alpha[i] - beta) * m_s[i];
     }
     return q;
@@ -71,6 +73,7 @@ public:
 private:
   std::size_t m_capacity;
   std::deque<Eigen::VectorXd> m_s, m_y;
+  std::deque<double> m_ys; ///< y·s of each pair, read by both loops (each read was a pass over two vectors)
 };
 
 } // namespace internal

@@ -68,6 +68,7 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
   }
 
   // clusters: region hexes connected through free vertices
+  std::fill(vertex_seen.begin(), vertex_seen.end(), 0);
   std::vector<long> label(nh, -1);
   std::vector<Local_region> regions;
   for(std::size_t seed = 0; seed < nh; ++seed)
@@ -89,12 +90,14 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
           if(label[c->hex] < 0) { label[c->hex] = id; stack.push_back(c->hex); }
       }
     }
+    // its free vertices, each once (`vertex_seen` marks them, then is
+    // cleared for the next cluster), in increasing order
     std::vector<std::size_t> verts;
     for(std::size_t h : reg.hexes)
       for(std::size_t v : hexes[h])
-        if(free_vertex[v]) verts.push_back(v);
+        if(free_vertex[v] && !vertex_seen[v]) { vertex_seen[v] = 1; verts.push_back(v); }
+    for(std::size_t v : verts) vertex_seen[v] = 0;
     std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
     reg.free_vertices = std::move(verts);
     std::sort(reg.hexes.begin(), reg.hexes.end());
     if(!reg.free_vertices.empty())
