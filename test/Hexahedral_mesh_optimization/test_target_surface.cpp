@@ -264,6 +264,68 @@ void test_features()
   }
 }
 
+// Creases by hysteresis (`Target_surface_parameters::feature_seed_angle`):
+// on the top of a unit box grid, (a) ridges of 160° (below θ = 165°, above
+// the seed angle 150°) that continue no crease are not features, and (b) a
+// valley that fades from 130° to 160° along y is one crease from rim to rim.
+void test_crease_hysteresis()
+{
+  const std::size_t n = 8;
+  const double pi = 3.14159265358979323846;
+  auto top = [&](const HMO::Hex_mesh_arrays& m, std::size_t v) { return std::abs(m.points[v][2] - 1.) < 1e-12; };
+  HMO::Target_surface_parameters seeded; // as the quality stages with crease_seed_angle(150)
+  seeded.feature_seed_angle = 150.;
+  // (a) a zigzag of ridges across the top: every other column raised so
+  // that each top quad tilts by 10°, a dihedral of 160° at each ridge
+  {
+    HMO::Hex_mesh_arrays m = grid(n, n, n);
+    std::vector<std::size_t> raise;
+    for(std::size_t v = 0; v < m.points.size(); ++v)
+      if(top(m, v) && std::lround(m.points[v][0] * double(n)) % 2 == 1) raise.push_back(v);
+    for(std::size_t v : raise) m.points[v][2] += std::tan(10. * pi / 180.) / double(n);
+    HMO::Target_surface ts(m, seeded);
+    check_box_classes(ts, n, n, n, "box with 160-degree ridges on top");
+    // without the hysteresis (the default parameters) every ridge is a
+    // crease, meeting the rims in 2 corners each
+    HMO::Target_surface all(m);
+    std::cout << "  the same, every edge below 165 degrees a crease: "
+              << all.number_of_vertices_of_class(Vertex_class::corner) << " corners" << std::endl;
+    HMO_CHECK(all.number_of_vertices_of_class(Vertex_class::corner) == 8 + 2 * (n - 1));
+  }
+  // (b) a valley along y at x = 1/2, one column wide on each side:
+  // z = 1 - t(y) max(0, 1/n - |x - 1/2|), its slope from 25° (dihedral
+  // 130°) at y = 0 down to 10° (160°) at y = 1; its shoulders are at 155°
+  // to 170°, and continue no crease
+  {
+    HMO::Hex_mesh_arrays m = grid(n, n, n);
+    for(std::size_t v = 0; v < m.points.size(); ++v)
+    {
+      if(!top(m, v)) continue;
+      const Vec3 p = m.points[v];
+      const double slope = (1. - p[1]) * 25. + p[1] * 10.;
+      m.points[v][2] = 1. - std::tan(slope * pi / 180.) * (std::max)(0., 1. / double(n) - std::abs(p[0] - 0.5));
+    }
+    HMO::Target_surface ts(m, seeded);
+    const HMO::Hex_mesh_boundary& b = ts.boundary();
+    std::size_t valley = 0, valley_sharp = 0;
+    for(std::size_t e = 0; e < b.number_of_edges(); ++e)
+    {
+      const Vec3 &p = m.points[b.edges[e][0]], &q = m.points[b.edges[e][1]];
+      const bool on_valley = std::abs(p[0] - 0.5) < 1e-12 && std::abs(q[0] - 0.5) < 1e-12 && p[2] > 0.5 &&
+                             q[2] > 0.5 && std::abs(p[1] - q[1]) > 0.;
+      if(!on_valley) continue;
+      ++valley;
+      valley_sharp += ts.sharp_edges()[e] ? 1 : 0;
+    }
+    std::cout << "valley fading from 130 to 160 degrees: " << valley_sharp << " of its " << valley
+              << " edges sharp, " << ts.number_of_vertices_of_class(Vertex_class::corner) << " corners" << std::endl;
+    HMO_CHECK(valley == n);
+    HMO_CHECK(valley_sharp == n);
+    // the rims' 8 corners and the two where the valley meets the rims
+    HMO_CHECK(ts.number_of_vertices_of_class(Vertex_class::corner) == 10);
+  }
+}
+
 void test_constraints()
 {
   const std::size_t n = 4;
@@ -849,6 +911,7 @@ int main(int, char** argv)
 {
   test_boundary_extraction();
   test_features();
+  test_crease_hysteresis();
   test_constraints();
   test_surface_error();
   test_culled_distance();

@@ -207,6 +207,7 @@ private:
 
     Target_surface_parameters tsp;
     tsp.feature_angle = m_s.sharp_angle;
+    tsp.feature_seed_angle = m_s.schedule.crease_seed_angle;
     // Ω_t = the boundary projected onto the reference, not smoothed: the
     // untangler smoothed what needed it, and smoothing a valid boundary only
     // moves the anchors of its corners and feature vertices away from it

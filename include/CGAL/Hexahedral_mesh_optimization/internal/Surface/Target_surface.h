@@ -56,6 +56,16 @@
 //   sharp. (PMP::detect_sharp_edges does the same test on a Surface_mesh;
 //   it is not used because it would need a manifold Surface_mesh of the
 //   quads rebuilt at every smoothing step, and cannot take the fold mask.)
+// - Seeds (`feature_seed_angle`; the named parameter `crease_seed_angle` of
+//   the quality stages, off by default): with a seed
+//   angle below θ, only the edges below it start creases; an edge below θ
+//   is sharp only where it continues a crease from one of its ends, turning
+//   by less than 60° (`continue_creases`), as a hysteresis threshold keeps
+//   the weak parts of strong edges in an image. The many edges at 150°-165°
+//   of coarse curved regions otherwise make short creases that meet in
+//   spurious corners (corners at θ = 165° without / with seeds at 150°:
+//   block_in 186 / 16, bust_in 281 / 100, cap_in 137 / 38, bunny_in
+//   497 / 109; see the manual).
 // - Fragments: the sharp edges form chains (split at vertices of sharp degree
 //   ≠ 2). A chain of fewer than `min_feature_edges` edges that dangles (an
 //   end of sharp degree 1) or forms an isolated closed loop is dropped;
@@ -114,6 +124,11 @@ struct Target_surface_parameters
   bool project_every_iteration = true;
   /// θ in degrees: an edge is sharp when its dihedral angle is below θ (180° = flat)
   double feature_angle = 165.;
+  /// creases start at edges whose dihedral angle is below this, and go on
+  /// along the edges below θ that continue them (`continue_creases`); 180
+  /// (the default) or θ: every edge below θ is a crease. The quality stages
+  /// set it from `Optimization_schedule::crease_seed_angle`
+  double feature_seed_angle = 180.;
   /// the (stricter) threshold for the creases kept while smoothing
   double smoothing_feature_angle = 135.;
   /// dangling or isolated feature fragments with fewer edges are dropped
@@ -582,7 +597,7 @@ private:
   {
     const std::size_t nb = boundary_.vertices.size();
     std::vector<std::size_t> degree;
-    detect_features(omega_, param_.feature_angle, sharp_edge_, degree);
+    detect_features(omega_, param_.feature_angle, sharp_edge_, degree, nullptr, param_.feature_seed_angle);
     classes_.assign(n_vertices_, Vertex_class::interior);
     for(std::size_t bi = 0; bi < nb; ++bi)
       classes_[boundary_.vertices[bi]] = degree[bi] == 0 ? Vertex_class::regular
@@ -651,7 +666,8 @@ private:
                        double angle,
                        std::vector<unsigned char>& sharp,
                        std::vector<std::size_t>& degree,
-                       const std::vector<unsigned char>* mask = nullptr) const
+                       const std::vector<unsigned char>* mask = nullptr,
+                       double seed_angle = 180.) const
   {
     const std::size_t nq = boundary_.quads.size();
     std::vector<Vec3> qn(nq);
@@ -663,11 +679,8 @@ private:
       qn[q] = l > 0. ? (1. / l) * n : Vec3{0., 0., 0.};
     }
     // dihedral < θ  <=>  angle(n1, n2) > 180° − θ  <=>  n1·n2 < cos(180° − θ)
-    const double cos_max = std::cos((180. - angle) * CGAL_PI / 180.);
-    sharp.assign(boundary_.edges.size(), 0);
-    for(std::size_t e = 0; e < boundary_.edges.size(); ++e)
-      if(!boundary_.edge_is_manifold[e])
-        sharp[e] = 1;
+    const std::size_t ne = boundary_.edges.size();
+    std::vector<double> normal_cosine(ne, 1.); // n1·n2 across each edge (1: flat or undefined)
     for(std::size_t q = 0; q < nq; ++q)
       for(int i = 0; i < 4; ++i)
       {
@@ -676,13 +689,25 @@ private:
           continue;
         if(squared_norm(qn[q]) == 0. || squared_norm(qn[r]) == 0.)
           continue;
-        if(dot(qn[q], qn[r]) < cos_max)
-          sharp[boundary_.quad_edges[q][i]] = 1;
+        normal_cosine[boundary_.quad_edges[q][i]] = dot(qn[q], qn[r]);
       }
-    if(mask != nullptr)
-      for(std::size_t e = 0; e < boundary_.edges.size(); ++e)
-        if((*mask)[bidx(boundary_.edges[e][0])] || (*mask)[bidx(boundary_.edges[e][1])])
-          sharp[e] = 0;
+    auto below = [&](double a) {
+      const double cos_max = std::cos((180. - a) * CGAL_PI / 180.);
+      std::vector<unsigned char> s(ne, 0);
+      for(std::size_t e = 0; e < ne; ++e)
+      {
+        const bool masked = mask != nullptr && ((*mask)[bidx(boundary_.edges[e][0])] || (*mask)[bidx(boundary_.edges[e][1])]);
+        s[e] = !masked && (!boundary_.edge_is_manifold[e] || normal_cosine[e] < cos_max) ? 1 : 0;
+      }
+      return s;
+    };
+    sharp = below(angle);
+    if(seed_angle < angle)
+    {
+      const std::vector<unsigned char> weak = sharp;
+      sharp = below(seed_angle);
+      continue_creases(P, weak, sharp);
+    }
 
     // drop short dangling / isolated fragments, until stable
     std::vector<Feature_line> lines;
@@ -705,6 +730,54 @@ private:
       }
       if(!removed)
         break;
+    }
+  }
+
+  // Hysteresis along the creases: from each end of a crease (a vertex with
+  // one sharp edge), the crease goes on along the `weak` edge of that vertex
+  // that turns least from it, if it turns by less than 60°; repeated until
+  // no end goes on (the vertices in index order, round after round: the same
+  // result on any run). A weak edge that continues no crease stays flat, so
+  // the many edges at 150°-165° of a coarse curved region no longer make
+  // short creases that meet each other in spurious corners.
+  void continue_creases(const std::vector<Vec3>& P, const std::vector<unsigned char>& weak,
+                        std::vector<unsigned char>& sharp) const
+  {
+    const double least_cosine = 0.5; // a turn below 60°
+    std::vector<std::size_t> degree;
+    compute_degree(sharp, degree);
+    const std::size_t nb = boundary_.vertices.size();
+    for(bool grew = true; grew;)
+    {
+      grew = false;
+      for(std::size_t bi = 0; bi < nb; ++bi)
+      {
+        if(degree[bi] != 1) continue;
+        const std::size_t v = boundary_.vertices[bi];
+        const std::size_t* first = boundary_.vertex_edge_list.data() + boundary_.vertex_edge_offsets[bi];
+        const std::size_t* last = boundary_.vertex_edge_list.data() + boundary_.vertex_edge_offsets[bi + 1];
+        Vec3 incoming{0., 0., 0.};
+        for(const std::size_t* e = first; e != last; ++e)
+          if(sharp[*e]) incoming = P[bi] - P[bidx(boundary_.opposite(*e, v))];
+        const double li = norm(incoming);
+        if(!(li > 0.)) continue;
+        std::size_t best = npos;
+        double best_cosine = least_cosine;
+        for(const std::size_t* e = first; e != last; ++e)
+        {
+          if(sharp[*e] || !weak[*e]) continue;
+          const Vec3 out = P[bidx(boundary_.opposite(*e, v))] - P[bi];
+          const double lo = norm(out);
+          if(!(lo > 0.)) continue;
+          const double c = dot(incoming, out) / (li * lo);
+          if(c > best_cosine) { best_cosine = c; best = *e; }
+        }
+        if(best == npos) continue;
+        sharp[best] = 1;
+        ++degree[bidx(boundary_.edges[best][0])];
+        ++degree[bidx(boundary_.edges[best][1])];
+        grew = true;
+      }
     }
   }
 
