@@ -257,7 +257,7 @@ struct Options
   bool relax_surface;
   int local_iterations, number_of_iterations;
   bool barrier_fallback;
-  double target_msj, surface_tolerance;
+  double target_msj, surface_tolerance, crease_seed_angle;
   bool pull_back, asj_smoothing, edge_angle_stages;
   HMO::Method method = HMO::Method::package;
   double time_limit = std::numeric_limits<double>::infinity();
@@ -284,6 +284,7 @@ struct Options
     pull_back = q.pull_back;
     asj_smoothing = q.asj_smoothing;
     edge_angle_stages = q.schedule.msj_stage_edge_angle_passes > 0;
+    crease_seed_angle = q.schedule.crease_seed_angle;
   }
 };
 
@@ -302,7 +303,7 @@ const std::set<std::string>& accepted_options(Function f)
                                               "surface_tolerance", "method", "time_limit", "threads"};
   static const std::set<std::string> quality = [] {
     std::set<std::string> s = untangle;
-    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages"});
+    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "crease_seed_angle"});
     return s;
   }();
   return f == Function::untangle ? untangle : quality;
@@ -348,6 +349,7 @@ Options read_options(Function f, const py::kwargs& kwargs)
       raise(PyExc_TypeError, std::string(function_name(f)) + "() got an unexpected keyword argument '" + name + "'");
     const py::handle v = item.second;
     if(name == "sharp_angle") o.sharp_angle = finite_number(name, v, 0., 180.);
+    else if(name == "crease_seed_angle") o.crease_seed_angle = finite_number(name, v, 0., 180.);
     else if(name == "alpha") o.alpha = finite_number(name, v, 0., 1e12);
     else if(name == "beta") o.beta = finite_number(name, v, 0., 1e12);
     else if(name == "xi") o.xi = finite_number(name, v, 0., 10.);
@@ -528,6 +530,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
   visitor.stop = &stop;
   namespace HP = CGAL::hex_mesh_parameters;
   const auto np = HP::sharp_angle(o.sharp_angle,
+                  HP::crease_seed_angle(o.crease_seed_angle,
                   HP::alpha(o.alpha,
                   HP::beta(o.beta,
                   HP::xi(o.xi,
@@ -543,7 +546,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                   HP::time_limit(o.time_limit,
                   HP::stop_flag(&stop,
                   CGAL::parameters::number_of_iterations(o.number_of_iterations)
-                                    .visitor(std::ref(visitor)))))))))))))))));
+                                    .visitor(std::ref(visitor))))))))))))))))));
   HMO::Optimization_result r;
   {
     py::gil_scoped_release no_gil;
@@ -598,7 +601,7 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +
-    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages.\n";
+    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, crease_seed_angle.\n";
   const std::string common =
     "reference: None (the input boundary), a path to a surface (OBJ, OFF, STL, PLY) or a pair\n"
     "(vertices (N, 3), faces (F, 3 or 4)). progress: None or a callable (stage, value), called with the\n"

@@ -34,6 +34,7 @@ struct Hexmesh_optimize_options
   bool paper_method = false;      ///< --method paper: the method of Xu & Chen alone
   std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
   double sharp_angle = 165.;      ///< --sharp-angle DEG
+  double crease_seed_angle = 180.; ///< --crease-seed-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
   double time_limit = 0.;         ///< --time-limit S: hard stop of the whole run; 0: none
@@ -143,6 +144,9 @@ inline const std::vector<Option_spec>& option_table()
     {"--sharp-angle", "DEG",
      "dihedral angle below which a boundary edge is a feature (default 165)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--sharp-angle", v, 0., 180., o.sharp_angle, e); }},
+    {"--crease-seed-angle", "DEG",
+     "quality stages: a crease starts only at an edge below DEG, the edges below the sharp angle only continue it (default 180: off)",
+     [](O& o, const std::string& v, std::string& e) { return parse_number("--crease-seed-angle", v, 0., 180., o.crease_seed_angle, e); }},
     {"--surface-tolerance", "X",
      "largest surface error the quality stages may cause, relative to the bounding-box diagonal (default 0.005)",
      [](O& o, const std::string& v, std::string& e) {

@@ -31,6 +31,8 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   else
     s.schedule.msj_stage_edge_angle_passes = 0;
   s.sharp_angle = u.sharp_angle;
+  s.schedule.crease_seed_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::crease_seed_angle),
+                                                  s.schedule.crease_seed_angle);
   s.xi = u.xi;
   s.local_iterations = u.local_iterations;
   s.alpha = (std::max)(u.alpha, 500.);
@@ -192,6 +194,11 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
     \cgalParamType{`double`}
     \cgalParamDefault{165}
+  \cgalParamNEnd
+  \cgalParamNBegin{crease_seed_angle}
+    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. 150 takes the corners of block_in from 186 to 16; the manual's implementation notes have what it changes on the published rows and the stress sets}
+    \cgalParamType{`double`}
+    \cgalParamDefault{180}
   \cgalParamNEnd
   \cgalParamNBegin{alpha}
     \cgalParamDescription{weight of the feature and corner constraints in the edge-angle stages (at least 500)}

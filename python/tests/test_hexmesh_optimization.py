@@ -235,6 +235,10 @@ def test_options_are_checked():
     points, hexes = unit_cube_grid(2)
     with pytest.raises(TypeError, match="unexpected keyword argument 'target_msj'"):
         hmo.untangle(points, hexes, target_msj=0.5)  # a quality option
+    with pytest.raises(TypeError, match="unexpected keyword argument 'crease_seed_angle'"):
+        hmo.untangle(points, hexes, crease_seed_angle=150)  # a quality option too
+    with pytest.raises(ValueError, match="crease_seed_angle"):
+        hmo.optimize(points, hexes, crease_seed_angle=200)
     with pytest.raises(TypeError, match="unexpected keyword argument 'no_such_option'"):
         hmo.optimize(points, hexes, no_such_option=1)
     with pytest.raises(ValueError, match="method"):

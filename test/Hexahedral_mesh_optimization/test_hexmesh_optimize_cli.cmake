@@ -57,6 +57,11 @@ check("an unknown output format exits 2 (got ${badext_rc})" badext_rc EQUAL 2)
 check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e")
 check("nothing written" NOT EXISTS ${WORK}/out.txt)
 
+run(badseed ${bunny} ${WORK}/seed.mesh --crease-seed-angle 200)
+check("a crease seed angle above 180 exits 2 (got ${badseed_rc})" badseed_rc EQUAL 2)
+check("and names the option: ${badseed_err}" badseed_err MATCHES "--crease-seed-angle")
+check("nothing written" NOT EXISTS ${WORK}/seed.mesh)
+
 run(three a.mesh b.mesh c.mesh)
 check("three files exit 2 (got ${three_rc})" three_rc EQUAL 2)
 

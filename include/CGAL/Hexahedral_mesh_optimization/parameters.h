@@ -41,6 +41,7 @@ namespace hex_mesh_internal_np {
 
 enum reference_surface_t { reference_surface };
 enum sharp_angle_t { sharp_angle };
+enum crease_seed_angle_t { crease_seed_angle };
 enum alpha_t { alpha };
 enum beta_t { beta };
 enum xi_t { xi };
@@ -84,6 +85,10 @@ namespace hex_mesh_parameters {
 CGAL_HMO_ADD_PARAMETER(reference_surface)
 /// θ in degrees: boundary edges with a smaller dihedral angle are features (default 165)
 CGAL_HMO_ADD_PARAMETER(sharp_angle)
+/// quality stages: creases start only at edges below this dihedral angle and
+/// the edges below `sharp_angle` only continue them (default 180: every edge
+/// below `sharp_angle` is a crease)
+CGAL_HMO_ADD_PARAMETER(crease_seed_angle)
 /// weight of the feature-line and corner constraints of Eq. 6 (default 1000)
 CGAL_HMO_ADD_PARAMETER(alpha)
 /// weight of the tangent-plane constraint of Eq. 6 (default 1000)
