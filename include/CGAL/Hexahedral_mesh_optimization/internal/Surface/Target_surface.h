@@ -129,6 +129,10 @@ struct Target_surface_parameters
   /// (the default) or θ: every edge below θ is a crease. The quality stages
   /// set it from `Optimization_schedule::crease_seed_angle`
   double feature_seed_angle = 180.;
+  /// with seeds, a crease goes on along a weak edge that turns from it by
+  /// less than this, in degrees (a sharper turn is a corner, not a crease
+  /// going on)
+  double crease_continuation_turn = 60.;
   /// the (stricter) threshold for the creases kept while smoothing
   double smoothing_feature_angle = 135.;
   /// dangling or isolated feature fragments with fewer edges are dropped
@@ -735,7 +739,8 @@ private:
 
   // Hysteresis along the creases: from each end of a crease (a vertex with
   // one sharp edge), the crease goes on along the `weak` edge of that vertex
-  // that turns least from it, if it turns by less than 60°; repeated until
+  // that turns least from it, if it turns by less than
+  // `crease_continuation_turn`; repeated until
   // no end goes on (the vertices in index order, round after round: the same
   // result on any run). A weak edge that continues no crease stays flat, so
   // the many edges at 150°-165° of a coarse curved region no longer make
@@ -743,7 +748,7 @@ private:
   void continue_creases(const std::vector<Vec3>& P, const std::vector<unsigned char>& weak,
                         std::vector<unsigned char>& sharp) const
   {
-    const double least_cosine = 0.5; // a turn below 60°
+    const double least_cosine = std::cos(param_.crease_continuation_turn * CGAL_PI / 180.);
     std::vector<std::size_t> degree;
     compute_degree(sharp, degree);
     const std::size_t nb = boundary_.vertices.size();
@@ -754,8 +759,7 @@ private:
       {
         if(degree[bi] != 1) continue;
         const std::size_t v = boundary_.vertices[bi];
-        const std::size_t* first = boundary_.vertex_edge_list.data() + boundary_.vertex_edge_offsets[bi];
-        const std::size_t* last = boundary_.vertex_edge_list.data() + boundary_.vertex_edge_offsets[bi + 1];
+        const std::size_t *first = boundary_.edges_of(bi).first, *last = boundary_.edges_of(bi).second;
         Vec3 incoming{0., 0., 0.};
         for(const std::size_t* e = first; e != last; ++e)
           if(sharp[*e]) incoming = P[bi] - P[bidx(boundary_.opposite(*e, v))];
