@@ -424,14 +424,8 @@ private:
   /// on a region with nothing inverted.
   static void run_on_region(Barrier_untangler& b, const Local_region& region, Hex_mesh_arrays& mesh, bool must_fall)
   {
-    auto count = [&] {
-      std::size_t n = 0;
-      if(region.hexes.size() < Barrier_untangler::parallel_energy_hexes)
-      {
-        for(std::size_t h : region.hexes) if(is_inverted(scaled_jacobian(mesh, h))) ++n;
-        return n;
-      }
-      std::vector<unsigned char> inverted(region.hexes.size()); // a large region: on all threads
+    auto count = [&] { // on all threads (a small region is one task)
+      std::vector<unsigned char> inverted(region.hexes.size());
       parallel_for_each_index(region.hexes.size(), [&](std::size_t i) {
         inverted[i] = is_inverted(scaled_jacobian(mesh, region.hexes[i])) ? 1 : 0;
       }, 1024);

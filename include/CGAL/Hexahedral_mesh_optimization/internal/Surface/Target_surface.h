@@ -60,7 +60,8 @@
 //   the quality stages, off by default): with a seed
 //   angle below θ, only the edges below it start creases; an edge below θ
 //   is sharp only where it continues a crease from one of its ends, turning
-//   by less than 60° (`continue_creases`), as a hysteresis threshold keeps
+//   by less than `crease_continuation_turn` (60°; `continue_creases`), as a
+//   hysteresis threshold keeps
 //   the weak parts of strong edges in an image. The many edges at 150°-165°
 //   of coarse curved regions otherwise make short creases that meet in
 //   spurious corners (corners at θ = 165° without / with seeds at 150°:

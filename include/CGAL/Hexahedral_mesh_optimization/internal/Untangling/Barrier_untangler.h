@@ -57,11 +57,6 @@ namespace internal {
 class Barrier_untangler
 {
 public:
-  /// regions of at least this many hexes evaluate their energy on all
-  /// threads, this many hexes at a time (a merged region of a 1M-hex grid
-  /// held 570k hexes, on one thread), and their minimum determinant too
-  static constexpr std::size_t parallel_energy_hexes = 4096;
-
   Barrier_untangler(const Hex_mesh_topology& topo, const Local_region& region,
                     const std::vector<Boundary_constraint>& bc, double boundary_weight)
     : m_topo(topo), m_region(region), m_bc(&bc), m_wb(boundary_weight)
@@ -198,22 +193,22 @@ private:
     return m;
   }
 
-  // a minimum: the same on any number of threads
+  // per hex on all threads (a small region is one task), then the minimum
+  // in hex order: the same on any number of threads
   double minimum_determinant(const Eigen::VectorXd& x) const
   {
-    const std::size_t n = m_region.hexes.size();
+    std::vector<double> d(m_region.hexes.size());
+    parallel_for_each_index(d.size(), [&](std::size_t r) { d[r] = hex_minimum_determinant(x, r); }, 1024);
     double m = std::numeric_limits<double>::max();
-    if(n < parallel_energy_hexes)
-    {
-      for(std::size_t r = 0; r < n; ++r) m = (std::min)(m, hex_minimum_determinant(x, r));
-      return m;
-    }
-    std::vector<double> d(n);
-    parallel_for_each_index(n, [&](std::size_t r) { d[r] = hex_minimum_determinant(x, r); }, 1024);
     for(double v : d) m = (std::min)(m, v);
     return m;
   }
 
+
+  /// regions of at least this many hexes evaluate their energy on all
+  /// threads, this many hexes at a time (a merged region of a 1M-hex grid
+  /// held 570k hexes, on one thread)
+  static constexpr std::size_t parallel_energy_hexes = 4096;
 
   /// the frame energy of region hex r (infinity when injective and a frame
   /// is not positive) and, with `gp`, its gradient at the hex's 8 corners
