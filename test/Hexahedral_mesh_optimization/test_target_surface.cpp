@@ -907,6 +907,63 @@ void test_shared_data()
   HMO_CHECK(unit);
 }
 
+// The surface check after a change (`surface_error_after_change`), with the
+// bounds it keeps from one call to the next and without, against the error
+// measured in full: on a cylinder whose boundary vertices move in steps,
+// mostly a little (what the bounds clear), sometimes one vertex far out (the
+// error grows there, which the bounds must not hide), sometimes a step
+// undone (the bounds were set on a state that is gone).
+void test_surface_error_after_change()
+{
+  const HMO::Hex_mesh_arrays start = cylinder(8, 6, 1.5);
+  const HMO::Hex_mesh_boundary b = HMO::extract_boundary(start);
+  HMO::Triangle_surface reference;
+  HMO::boundary_to_surface_mesh(b, start.points, reference, HMO::Quad_split::diagonal_02);
+  const HMO::Reference_distance_index index(reference);
+  const double precision = 1e-4 * index.diagonal();
+  auto same_frame = [](const Vec3& p) { return p; };
+  HMO::Surface_error_bounds bounds;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1., 1.);
+  std::uniform_int_distribution<std::size_t> pick(0, b.vertices.size() - 1);
+  HMO::Hex_mesh_arrays m = start;
+  double error = 0.;
+  int grew = 0, steps_checked = 0;
+  for(int step = 0; step < 24; ++step)
+  {
+    const std::vector<Vec3> before = m.points;
+    // every boundary vertex a little (0.2 % of the diagonal at most), and
+    // every fourth step one vertex 3 % of it out
+    for(std::size_t v : b.vertices)
+      m.points[v] = m.points[v] + 0.002 * index.diagonal() * Vec3{unit(rng), unit(rng), unit(rng)};
+    if(step % 4 == 3)
+    {
+      const std::size_t v = b.vertices[pick(rng)];
+      m.points[v] = m.points[v] + 0.03 * index.diagonal() * Vec3{unit(rng), unit(rng), unit(rng)};
+    }
+    const double kept = HMO::surface_error_after_change(b, before, m.points, index, error, same_frame, 1e-4, &bounds);
+    const double plain = HMO::surface_error_after_change(b, before, m.points, index, error, same_frame);
+    HMO::Triangle_surface now;
+    HMO::boundary_to_surface_mesh(b, m.points, now, HMO::Quad_split::diagonal_02);
+    const HMO::Surface_distance full = HMO::surface_distance(now, reference);
+    const double truth = (std::max)(full.mesh_to_reference, full.reference_to_mesh);
+    // an upper bound, exact when the error grew
+    HMO_CHECK(kept >= truth - 2. * precision);
+    HMO_CHECK(plain >= truth - 2. * precision);
+    if(truth > error + 2. * precision)
+    {
+      ++grew;
+      HMO_CHECK_CLOSE(kept, truth, 2. * precision);
+    }
+    HMO_CHECK_CLOSE(kept, plain, 2. * precision);
+    ++steps_checked;
+    if(step % 3 == 2) m.points = before; // undone: the error stays
+    else error = kept;
+  }
+  std::cout << "surface error after change: " << steps_checked << " steps, the error grew in " << grew << std::endl;
+  HMO_CHECK(grew >= 3);
+}
+
 int main(int, char** argv)
 {
   test_boundary_extraction();
@@ -916,6 +973,7 @@ int main(int, char** argv)
   test_surface_error();
   test_culled_distance();
   test_straddle_bound();
+  test_surface_error_after_change();
   test_reference_fit();
   test_shared_data();
   return hmo_test::report(argv[0]);

@@ -343,9 +343,10 @@ inline void triangulate_boundary(const Hex_mesh_boundary& b,
 /// (the usual case for the boundary of a hex mesh); otherwise
 /// `orient_polygon_soup` first duplicates non-manifold vertices and
 /// reorients what it must. Degenerate triangles (a repeated index, from
-/// collapsed hexes) are skipped.
+/// collapsed hexes) are skipped. Returns whether face i of `out` is
+/// triangle i of the soup, for every i (none skipped, no repair).
 template <class Point_3>
-void soup_to_surface_mesh(const std::vector<Vec3>& soup_points,
+bool soup_to_surface_mesh(const std::vector<Vec3>& soup_points,
                           const std::vector<Tri>& soup_triangles,
                           CGAL::Surface_mesh<Point_3>& out)
 {
@@ -356,11 +357,14 @@ void soup_to_surface_mesh(const std::vector<Vec3>& soup_points,
   vi.reserve(soup_points.size());
   for(const Vec3& p : soup_points)
     vi.push_back(out.add_vertex(Point_3(p[0], p[1], p[2])));
-  bool ok = true;
+  bool ok = true, in_order = true;
   for(const Tri& t : soup_triangles)
   {
     if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+    {
+      in_order = false;
       continue;
+    }
     if(out.add_face(vi[t[0]], vi[t[1]], vi[t[2]]) == SM::null_face())
     {
       ok = false;
@@ -368,7 +372,7 @@ void soup_to_surface_mesh(const std::vector<Vec3>& soup_points,
     }
   }
   if(ok)
-    return;
+    return in_order;
 
   out.clear();
   std::vector<Point_3> pts;
@@ -382,12 +386,15 @@ void soup_to_surface_mesh(const std::vector<Vec3>& soup_points,
       polys.push_back({t[0], t[1], t[2]});
   CGAL::Polygon_mesh_processing::orient_polygon_soup(pts, polys);
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(pts, polys, out);
+  return false;
 }
 
 /// The boundary of a hex mesh, each quad cut in 2 triangles (`split` must
 /// not be `both_diagonals`, which is no manifold), as a `Surface_mesh`.
+/// Returns whether its faces are the quads' triangles in order (faces 2q
+/// and 2q + 1 are quad q's with `diagonal_02`; see `soup_to_surface_mesh`).
 template <class Point_3>
-void boundary_to_surface_mesh(const Hex_mesh_boundary& b,
+bool boundary_to_surface_mesh(const Hex_mesh_boundary& b,
                               const std::vector<Vec3>& points,
                               CGAL::Surface_mesh<Point_3>& out,
                               Quad_split split = Quad_split::diagonal_02)
@@ -396,7 +403,7 @@ void boundary_to_surface_mesh(const Hex_mesh_boundary& b,
   std::vector<Vec3> sp;
   std::vector<Tri> st;
   triangulate_boundary(b, points, split, sp, st);
-  soup_to_surface_mesh(sp, st, out);
+  return soup_to_surface_mesh(sp, st, out);
 }
 
 /// Copies a face graph into a triangle soup of `Vec3`, reading positions

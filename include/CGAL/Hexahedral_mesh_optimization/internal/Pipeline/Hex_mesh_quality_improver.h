@@ -112,6 +112,8 @@ class Hex_mesh_quality_improver
     Triangle_surface reference;
     /// `reference` set up for the checks after each change (built at the first)
     std::unique_ptr<Reference_distance_index> reference_index;
+    /// what the surface checks since the start learnt (`surface_error_after_change`)
+    Surface_error_bounds error_bounds;
     /// the surface tolerance in normalised mesh units
     double tolerance = 0.;
     double diagonal = 0.;
@@ -254,7 +256,7 @@ private:
     const Normalization& nz = st.nz;
     st.current_error =
       surface_error_after_change(st.ts->boundary(), before, st.mesh.points, *st.reference_index, error_before * st.diagonal,
-                                 [&nz](const Vec3& p) { return nz.undo(p); }) /
+                                 [&nz](const Vec3& p) { return nz.undo(p); }, 1e-4, &st.error_bounds) /
       st.diagonal;
     st.error_may_be_bound = true;
     return st.current_error;

@@ -40,7 +40,6 @@
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Bbox_3.h>
-#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <array>
@@ -165,10 +164,13 @@ inline std::vector<std::array<std::size_t, 3> > face_neighbours(const Triangle_s
 /// where t straddles an edge of the reference (a boundary quad whose
 /// corners slid across the reference's triangles); this one is close to the
 /// distance there. t crossing two or more edges' planes: the single-triangle
-/// bound.
+/// bound. `across` (if given) receives the other triangle the bound used
+/// (`r` itself for the single-triangle bound).
 inline double straddle_bound(const Soup_triangle& t, std::size_t r, const std::vector<Soup_triangle>& triangles,
-                             const std::vector<std::array<std::size_t, 3> >& neighbours)
+                             const std::vector<std::array<std::size_t, 3> >& neighbours,
+                             std::size_t* across = nullptr)
 {
+  if(across) *across = r;
   typedef Soup_kernel::Vector_3 V;
   const Soup_triangle& R = triangles[r];
   double single = 0.;
@@ -216,10 +218,38 @@ inline double straddle_bound(const Soup_triangle& t, std::size_t r, const std::v
       u = (std::max)(u, (std::max)(CGAL::squared_distance(x, R), CGAL::squared_distance(x, O)));
     }
   }
+  if(across && u < single) *across = neighbours[r][crossed];
   return (std::min)(u, single);
 }
 
 } // namespace surface_distance_detail
+
+/// A bound of the distance from every point of a triangle to a surface,
+/// through a few triangles of that surface: the distance to those alone is
+/// at most `bound` everywhere on the triangle. When the triangle was cut
+/// into pieces (`one_sided_distance_above`), the bound is the largest of
+/// theirs if that is lower, through the triangles of them all if there are
+/// at most `max_witnesses`, else the triangle's own bound. `surface_bound`
+/// (at most `bound`) is the lower of the two in any case: a bound of the
+/// distance to the whole surface.
+struct Distance_witness
+{
+  static const std::size_t max_witnesses = 4;
+  double bound = 0.;
+  double surface_bound = 0.;
+  std::array<std::size_t, max_witnesses> through = {{0, 0, 0, 0}};
+  std::size_t count = 0;
+
+  /// adds triangle `t` to those it goes through; false if there is no room
+  bool add(std::size_t t)
+  {
+    for(std::size_t i = 0; i < count; ++i)
+      if(through[i] == t) return true;
+    if(count == max_witnesses) return false;
+    through[count++] = t;
+    return true;
+  }
+};
 
 /// max(`lower`, the one-sided Hausdorff distance from the triangles `from`
 /// to the surface `to`), to `error_bound`, for a caller that only needs the
@@ -243,33 +273,46 @@ inline double straddle_bound(const Soup_triangle& t, std::size_t r, const std::v
 /// figures. `tree` holds `to_triangles`, the triangles of `to` in face order
 /// (`triangles_of`), distance queries accelerated; `to_neighbours` their
 /// `face_neighbours` (`Reference_distance_index` keeps all three for a
-/// whole run).
+/// whole run). `witnesses` (if given) receives the bound of each triangle
+/// of `from` and the triangles of `to` (indices in `to_triangles`) it went
+/// through.
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
                                        const surface_distance_detail::Soup_tree& tree,
                                        const std::vector<surface_distance_detail::Soup_triangle>& to_triangles,
                                        const std::vector<std::array<std::size_t, 3> >& to_neighbours,
                                        const Triangle_surface& to, double lower, double error_bound,
-                                       int subdivision_depth = 4)
+                                       int subdivision_depth = 4, std::vector<Distance_witness>* witnesses = nullptr)
 {
   namespace PMP = CGAL::Polygon_mesh_processing;
   using namespace surface_distance_detail;
+  if(witnesses) witnesses->assign(from.size(), Distance_witness());
   if(from.empty()) return lower;
   if(to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
   // the centroid's squared distance to `to` (realised), and the bound of the
   // triangle's squared distance through the triangle of `to` closest to it
-  auto bound_of = [&](const Soup_triangle& t, double& realised2) {
+  // (and the one across, in `across`)
+  auto bound_of = [&](const Soup_triangle& t, double& realised2, std::size_t& closest, std::size_t& across) {
     const Soup_point c = CGAL::centroid(t);
     const auto hit = tree.closest_point_and_primitive(c);
     realised2 = CGAL::squared_distance(c, hit.first);
-    return straddle_bound(t, std::size_t(hit.second - to_triangles.begin()), to_triangles, to_neighbours);
+    closest = std::size_t(hit.second - to_triangles.begin());
+    return straddle_bound(t, closest, to_triangles, to_neighbours, &across);
   };
   std::vector<double> upper(from.size());
   double lower2 = lower * lower;
   for(std::size_t i = 0; i < from.size(); ++i)
   {
     double r2 = 0.;
-    upper[i] = bound_of(from[i], r2);
+    std::size_t closest = 0, across = 0;
+    upper[i] = bound_of(from[i], r2, closest, across);
     lower2 = (std::max)(lower2, r2);
+    if(witnesses)
+    {
+      Distance_witness& w = (*witnesses)[i];
+      w.bound = w.surface_bound = std::sqrt(upper[i]);
+      w.add(closest);
+      w.add(across);
+    }
   }
   // within `error_bound` of the realised distance: cannot change the answer
   // beyond the precision asked for
@@ -282,6 +325,11 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   for(std::size_t i = 0; i < from.size(); ++i)
   {
     if(upper[i] <= cull2()) continue;
+    // the pieces that are not cut further: their largest bound, and the
+    // triangles of `to` it goes through (while there is room for them)
+    double pieces2 = 0.;
+    Distance_witness through_pieces;
+    bool room = true;
     parts.assign(1, {from[i], 0});
     while(!parts.empty())
     {
@@ -291,8 +339,14 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
       if(level > 0)
       {
         double r2 = 0.;
-        const double u = bound_of(t, r2);
+        std::size_t closest = 0, across = 0;
+        const double u = bound_of(t, r2, closest, across);
         lower2 = (std::max)(lower2, r2);
+        if(u <= cull2() || level == subdivision_depth)
+        {
+          pieces2 = (std::max)(pieces2, u);
+          room = room && through_pieces.add(closest) && through_pieces.add(across);
+        }
         if(u <= cull2()) continue;
       }
       if(level < subdivision_depth)
@@ -309,6 +363,16 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
       for(int k = 0; k < 3; ++k) p[k] = Vec3{t.vertex(k).x(), t.vertex(k).y(), t.vertex(k).z()};
       add_separate_triangle(rest, p[0], p[1], p[2]);
     }
+    // (the pieces' bounds, through other triangles, may be the looser)
+    if(witnesses && subdivision_depth > 0 && pieces2 < upper[i])
+    {
+      if(room)
+      {
+        through_pieces.bound = std::sqrt(pieces2);
+        (*witnesses)[i] = through_pieces;
+      }
+      (*witnesses)[i].surface_bound = std::sqrt(pieces2);
+    }
   }
   const double realised = std::sqrt(lower2);
   if(rest.number_of_faces() == 0) return realised;
@@ -318,7 +382,7 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
 /// The same, building the tree of `to` for this one call.
 inline double one_sided_distance_above(const std::vector<surface_distance_detail::Soup_triangle>& from,
                                        const Triangle_surface& to, double lower, double error_bound,
-                                       int subdivision_depth = 4)
+                                       int subdivision_depth = 4, std::vector<Distance_witness>* witnesses = nullptr)
 {
   using namespace surface_distance_detail;
   if(from.empty()) return lower;
@@ -327,26 +391,22 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
   Soup_tree tree(to_triangles.begin(), to_triangles.end());
   tree.accelerate_distance_queries();
   return one_sided_distance_above(from, tree, to_triangles, face_neighbours(to), to, lower, error_bound,
-                                  subdivision_depth);
+                                  subdivision_depth, witnesses);
 }
 
 /// A reference surface set up once for the repeated checks of a run
 /// (`surface_error_after_change`): its triangles, their AABB tree with
-/// accelerated distance queries, their boxes and its diagonal. Not
-/// copyable: the tree refers into the triangles.
+/// accelerated distance queries and its diagonal. Not copyable: the tree
+/// refers into the triangles.
 class Reference_distance_index
 {
 public:
-  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
-
   explicit Reference_distance_index(const Triangle_surface& reference)
     : m_surface(reference), m_triangles(surface_distance_detail::triangles_of(reference)),
       m_neighbours(surface_distance_detail::face_neighbours(reference)),
       m_tree(m_triangles.begin(), m_triangles.end()), m_diagonal(internal::diagonal(bbox_of(reference)))
   {
     m_tree.accelerate_distance_queries();
-    m_boxes.reserve(m_triangles.size());
-    for(std::size_t t = 0; t < m_triangles.size(); ++t) m_boxes.push_back(Box(m_triangles[t].bbox(), t));
   }
   Reference_distance_index(const Reference_distance_index&) = delete;
   Reference_distance_index& operator=(const Reference_distance_index&) = delete;
@@ -356,8 +416,6 @@ public:
   /// the faces across the edges of each triangle (`face_neighbours`)
   const std::vector<std::array<std::size_t, 3> >& neighbours() const { return m_neighbours; }
   const surface_distance_detail::Soup_tree& tree() const { return m_tree; }
-  /// the boxes of the triangles, each with its index (box_intersection_d reorders a copy)
-  const std::vector<Box>& boxes() const { return m_boxes; }
   double diagonal() const { return m_diagonal; }
 
 private:
@@ -365,7 +423,6 @@ private:
   std::vector<surface_distance_detail::Soup_triangle> m_triangles;
   std::vector<std::array<std::size_t, 3> > m_neighbours;
   surface_distance_detail::Soup_tree m_tree;
-  std::vector<Box> m_boxes;
   double m_diagonal;
 };
 
@@ -431,6 +488,77 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
   return surface_distance(s, r, relative_error_bound);
 }
 
+/// Bounds of distances between triangles and a moving hex mesh boundary,
+/// kept from one surface check to the next (`surface_error_after_change`).
+/// Entry e holds a bound of the distance from every point of one triangle
+/// (a boundary quad's, or a fixed reference triangle) to the other side,
+/// through at most two boundary quads, its witnesses, and where their
+/// corners were then. When those corners have each moved by at most d
+/// since, the bound + d still holds: every point of a quad's triangles is
+/// the same convex combination of its corners as before, so it moved by at
+/// most d too. A check then leaves out whatever is certainly below the
+/// error it already knows, without a closest-point query: in a turn of the
+/// quality stages most of the boundary moves a little and stays well within
+/// the error (see the manual's implementation notes).
+class Moving_distance_bounds
+{
+public:
+  /// `n` entries, all unknown (unless there were `n` already)
+  void resize(std::size_t n)
+  {
+    if(m_entries.size() != n) m_entries.assign(n, Entry());
+  }
+  /// whether entry `e` is certainly below `value`; `corner(q, k)` is where
+  /// corner k of boundary quad q is now
+  template <class Corner>
+  bool below(std::size_t e, const Corner& corner, double value) const
+  {
+    const Entry& x = m_entries[e];
+    if(!(x.bound < value)) return false;
+    double moved2 = 0.;
+    for(std::size_t w = 0; w < x.quads; ++w)
+      for(int k = 0; k < 4; ++k) moved2 = (std::max)(moved2, squared_norm(corner(x.quad[w], k) - x.corners[4 * w + k]));
+    // the relative margin covers the rounding of the bound
+    return (x.bound + std::sqrt(moved2)) * (1. + 1e-9) < value;
+  }
+  /// entry `e` is within `bound`, through the `n` quads `quads` (at most
+  /// `max_quads`), their corners now at `corner`
+  template <class Corner>
+  void set(std::size_t e, double bound, const std::size_t* quads, std::size_t n, const Corner& corner)
+  {
+    CGAL_precondition(n <= max_quads);
+    Entry& x = m_entries[e];
+    x.bound = bound;
+    x.quads = n;
+    for(std::size_t w = 0; w < n; ++w)
+    {
+      x.quad[w] = quads[w];
+      for(int k = 0; k < 4; ++k) x.corners[4 * w + k] = corner(quads[w], k);
+    }
+  }
+  static const std::size_t max_quads = Distance_witness::max_witnesses;
+
+private:
+  struct Entry
+  {
+    double bound = std::numeric_limits<double>::infinity();
+    std::size_t quads = 0;
+    std::array<std::size_t, max_quads> quad;
+    std::array<Vec3, 4 * max_quads> corners;
+  };
+  std::vector<Entry> m_entries;
+};
+
+/// What `surface_error_after_change` keeps from one call to the next, for
+/// one boundary and one reference: the bounds of each boundary quad's
+/// distance to the reference (the quad its own witness) and of each
+/// reference triangle's distance to the boundary.
+struct Surface_error_bounds
+{
+  Moving_distance_bounds boundary_to_reference;
+  Moving_distance_bounds reference_to_boundary;
+};
+
 /// The surface error (Hausdorff distance between the boundary cut along the
 /// (0, 2) diagonals and `reference`, absolute) after the boundary vertices
 /// moved from `before` to `after`, when it was at most `error_before` at
@@ -445,11 +573,20 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
 /// grew beyond `error_before`: what a check against a bound needs, at the
 /// cost of the part that moved. `to_reference_frame` maps the points to the
 /// reference's coordinates.
+///
+/// With `kept_bounds` (kept by the caller from one call to the next, for
+/// this boundary and reference), what is certainly below `error_before` by its
+/// last bound and how far its witnesses moved since is left out
+/// (`Moving_distance_bounds`), since it cannot realise more:
+///   - boundary -> reference: a moved quad;
+///   - reference -> boundary: any reference triangle. Those bounds cover
+///     the whole reference, so every triangle they do not clear is measured
+///     and the search for the triangles near the moved quads is not needed.
 template <class Map>
 double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<Vec3>& before,
                                   const std::vector<Vec3>& after, const Reference_distance_index& reference,
                                   double error_before, const Map& to_reference_frame,
-                                  double relative_error_bound = 1e-4)
+                                  double relative_error_bound = 1e-4, Surface_error_bounds* kept_bounds = nullptr)
 {
   using surface_distance_detail::Soup_point;
   using surface_distance_detail::Soup_triangle;
@@ -458,48 +595,100 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
     for(std::size_t v : b.quads[q])
       if(before[v] != after[v]) { moved_quads.push_back(q); break; }
   if(moved_quads.empty()) return error_before;
-  // the moved quads now, and the boxes around them as they were
-  Triangle_surface whole;
-  std::vector<Soup_triangle> moved, near_reference;
-  auto point = [](const Vec3& p) { return Soup_point(p[0], p[1], p[2]); };
-  typedef Reference_distance_index::Box Box;
-  std::vector<Box> old_boxes;
-  for(std::size_t q : moved_quads)
-  {
-    std::array<Vec3, 4> c, o;
-    for(int i = 0; i < 4; ++i)
-    {
-      c[i] = to_reference_frame(after[b.quads[q][i]]);
-      o[i] = to_reference_frame(before[b.quads[q][i]]);
-    }
-    moved.push_back(Soup_triangle(point(c[0]), point(c[1]), point(c[2])));
-    moved.push_back(Soup_triangle(point(c[0]), point(c[2]), point(c[3])));
-    double lo[3], hi[3];
-    for(int k = 0; k < 3; ++k)
-    {
-      lo[k] = (std::min)({o[0][k], o[1][k], o[2][k], o[3][k]}) - error_before;
-      hi[k] = (std::max)({o[0][k], o[1][k], o[2][k], o[3][k]}) + error_before;
-    }
-    old_boxes.push_back(Box(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), q));
-  }
-  const std::vector<Soup_triangle>& reference_triangles = reference.triangles();
-  std::vector<Box> reference_boxes = reference.boxes();
-  std::vector<char> near(reference_triangles.size(), 0);
-  CGAL::box_intersection_d(reference_boxes.begin(), reference_boxes.end(), old_boxes.begin(), old_boxes.end(),
-                           [&](const Box& r, const Box&) { near[r.info()] = 1; });
-  for(std::size_t t = 0; t < reference_triangles.size(); ++t)
-    if(near[t]) near_reference.push_back(reference_triangles[t]);
   std::vector<Vec3> now(after.size());
   for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
-  boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02);
+  auto corner = [&](std::size_t q, int k) -> const Vec3& { return now[b.quads[q][k]]; };
+  Triangle_surface whole;
+  // the bounds through the boundary's triangles need faces 2q and 2q + 1
+  // to be quad q's (the usual case: a manifold boundary)
+  const bool faces_by_quad = boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02) &&
+                             whole.number_of_faces() == 2 * b.quads.size();
+  const std::vector<Soup_triangle>& reference_triangles = reference.triangles();
+  Surface_error_bounds unused;
+  Surface_error_bounds& bounds = kept_bounds ? *kept_bounds : unused;
+  const bool quad_bounds = kept_bounds != nullptr;
+  const bool reference_bounds = quad_bounds && faces_by_quad;
+  if(quad_bounds)
+  {
+    bounds.boundary_to_reference.resize(b.quads.size());
+    bounds.reference_to_boundary.resize(reference_triangles.size());
+  }
+
+  // boundary -> reference: the moved quads not cleared by their bounds
+  auto point = [](const Vec3& p) { return Soup_point(p[0], p[1], p[2]); };
+  std::vector<Soup_triangle> moved;
+  std::vector<std::size_t> measured_quads;
+  for(std::size_t q : moved_quads)
+    if(!quad_bounds || !bounds.boundary_to_reference.below(q, corner, error_before))
+    {
+      moved.push_back(Soup_triangle(point(corner(q, 0)), point(corner(q, 1)), point(corner(q, 2))));
+      moved.push_back(Soup_triangle(point(corner(q, 0)), point(corner(q, 2)), point(corner(q, 3))));
+      measured_quads.push_back(q);
+    }
+
+  // reference -> boundary: the triangles not cleared by their bounds, or
+  // without them, those that meet the boxes around the moved quads as they
+  // were, grown by `error_before`
+  std::vector<char> near(reference_triangles.size(), reference_bounds ? 1 : 0);
+  if(!reference_bounds)
+  {
+    std::vector<std::vector<Soup_triangle>::const_iterator> hits;
+    for(std::size_t q : moved_quads)
+    {
+      CGAL::Bbox_3 box;
+      for(int i = 0; i < 4; ++i)
+      {
+        const Vec3 o = to_reference_frame(before[b.quads[q][i]]);
+        box += CGAL::Bbox_3(o[0], o[1], o[2], o[0], o[1], o[2]);
+      }
+      box = CGAL::Bbox_3(box.xmin() - error_before, box.ymin() - error_before, box.zmin() - error_before,
+                         box.xmax() + error_before, box.ymax() + error_before, box.zmax() + error_before);
+      hits.clear();
+      reference.tree().all_intersected_primitives(box, std::back_inserter(hits));
+      for(auto it : hits) near[std::size_t(it - reference_triangles.begin())] = 1;
+    }
+  }
+  std::vector<Soup_triangle> near_reference;
+  std::vector<std::size_t> measured_reference;
+  for(std::size_t t = 0; t < reference_triangles.size(); ++t)
+    if(near[t] && !(reference_bounds && bounds.reference_to_boundary.below(t, corner, error_before)))
+    {
+      near_reference.push_back(reference_triangles[t]);
+      measured_reference.push_back(t);
+    }
+
   const double bound = relative_error_bound * reference.diagonal();
+  std::vector<Distance_witness> to_boundary, to_reference;
   auto other = std::async(std::launch::async, [&] {
-    return one_sided_distance_above(near_reference, whole, error_before, bound);
+    return one_sided_distance_above(near_reference, whole, error_before, bound, 4,
+                                    reference_bounds ? &to_boundary : nullptr);
   });
   const double mesh_to_reference =
-    one_sided_distance_above(moved, reference.tree(), reference.triangles(), reference.neighbours(),
-                             reference.surface(), error_before, bound);
-  return (std::max)(mesh_to_reference, other.get());
+    one_sided_distance_above(moved, reference.tree(), reference_triangles, reference.neighbours(),
+                             reference.surface(), error_before, bound, 4, quad_bounds ? &to_reference : nullptr);
+  const double reference_to_mesh = other.get();
+
+  // what was measured gives its bounds for the next call: a quad's is to
+  // the whole reference (which does not move), a reference triangle's
+  // through the quads of the boundary triangles it went through
+  if(quad_bounds)
+    for(std::size_t k = 0; k < measured_quads.size(); ++k)
+    {
+      const std::size_t q = measured_quads[k];
+      const double w = (std::max)(to_reference[2 * k].surface_bound, to_reference[2 * k + 1].surface_bound);
+      bounds.boundary_to_reference.set(q, w, &q, 1, corner);
+    }
+  if(reference_bounds)
+    for(std::size_t k = 0; k < measured_reference.size(); ++k)
+    {
+      const Distance_witness& w = to_boundary[k];
+      std::size_t quads[Distance_witness::max_witnesses];
+      std::size_t n = 0;
+      for(std::size_t i = 0; i < w.count; ++i)
+        if(std::find(quads, quads + n, w.through[i] / 2) == quads + n) quads[n++] = w.through[i] / 2;
+      bounds.reference_to_boundary.set(measured_reference[k], w.bound, quads, n, corner);
+    }
+  return (std::max)(mesh_to_reference, reference_to_mesh);
 }
 
 /// Hausdorff distance between the boundary of `mesh` and `reference`,
