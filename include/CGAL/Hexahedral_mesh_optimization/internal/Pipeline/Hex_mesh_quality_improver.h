@@ -246,7 +246,8 @@ private:
 
   /// Measures the surface error after a change from `before`, whose error
   /// was `error_before` (< 0: unknown, measured in full): only the quads
-  /// that moved and the reference near them are measured
+  /// that moved and the reference near them are measured, less what the
+  /// bounds kept from the previous checks (`st.error_bounds`) clear
   /// (`surface_error_after_change`). The value is an upper bound, exact
   /// whenever the error grew beyond `error_before`.
   double measure_error_since(Run_state& st, const std::vector<Vec3>& before, double error_before) const
