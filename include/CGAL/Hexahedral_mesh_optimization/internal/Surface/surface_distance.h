@@ -492,8 +492,8 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
 /// kept from one surface check to the next (`surface_error_after_change`).
 /// Entry e holds a bound of the distance from every point of one triangle
 /// (a boundary quad's, or a fixed reference triangle) to the other side,
-/// through at most two boundary quads, its witnesses, and where their
-/// corners were then. When those corners have each moved by at most d
+/// through at most `max_quads` boundary quads, its witnesses, and where
+/// their corners were then. When those corners have each moved by at most d
 /// since, the bound + d still holds: every point of a quad's triangles is
 /// the same convex combination of its corners as before, so it moved by at
 /// most d too. A check then leaves out whatever is certainly below the
@@ -604,11 +604,13 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   const bool faces_by_quad = boundary_to_surface_mesh(b, now, whole, Quad_split::diagonal_02) &&
                              whole.number_of_faces() == 2 * b.quads.size();
   const std::vector<Soup_triangle>& reference_triangles = reference.triangles();
+  // (a local object rather than a null pointer when none are kept: GCC's
+  // -Warray-bounds saw the pointer dereferenced on paths that never run)
   Surface_error_bounds unused;
   Surface_error_bounds& bounds = kept_bounds ? *kept_bounds : unused;
-  const bool quad_bounds = kept_bounds != nullptr;
-  const bool reference_bounds = quad_bounds && faces_by_quad;
-  if(quad_bounds)
+  const bool use_quad_bounds = kept_bounds != nullptr;
+  const bool use_reference_bounds = use_quad_bounds && faces_by_quad;
+  if(use_quad_bounds)
   {
     bounds.boundary_to_reference.resize(b.quads.size());
     bounds.reference_to_boundary.resize(reference_triangles.size());
@@ -619,7 +621,7 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   std::vector<Soup_triangle> moved;
   std::vector<std::size_t> measured_quads;
   for(std::size_t q : moved_quads)
-    if(!quad_bounds || !bounds.boundary_to_reference.below(q, corner, error_before))
+    if(!use_quad_bounds || !bounds.boundary_to_reference.below(q, corner, error_before))
     {
       moved.push_back(Soup_triangle(point(corner(q, 0)), point(corner(q, 1)), point(corner(q, 2))));
       moved.push_back(Soup_triangle(point(corner(q, 0)), point(corner(q, 2)), point(corner(q, 3))));
@@ -629,8 +631,8 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   // reference -> boundary: the triangles not cleared by their bounds, or
   // without them, those that meet the boxes around the moved quads as they
   // were, grown by `error_before`
-  std::vector<char> near(reference_triangles.size(), reference_bounds ? 1 : 0);
-  if(!reference_bounds)
+  std::vector<char> near(reference_triangles.size(), use_reference_bounds ? 1 : 0);
+  if(!use_reference_bounds)
   {
     std::vector<std::vector<Soup_triangle>::const_iterator> hits;
     for(std::size_t q : moved_quads)
@@ -651,7 +653,7 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   std::vector<Soup_triangle> near_reference;
   std::vector<std::size_t> measured_reference;
   for(std::size_t t = 0; t < reference_triangles.size(); ++t)
-    if(near[t] && !(reference_bounds && bounds.reference_to_boundary.below(t, corner, error_before)))
+    if(near[t] && !(use_reference_bounds && bounds.reference_to_boundary.below(t, corner, error_before)))
     {
       near_reference.push_back(reference_triangles[t]);
       measured_reference.push_back(t);
@@ -661,24 +663,24 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   std::vector<Distance_witness> to_boundary, to_reference;
   auto other = std::async(std::launch::async, [&] {
     return one_sided_distance_above(near_reference, whole, error_before, bound, 4,
-                                    reference_bounds ? &to_boundary : nullptr);
+                                    use_reference_bounds ? &to_boundary : nullptr);
   });
   const double mesh_to_reference =
     one_sided_distance_above(moved, reference.tree(), reference_triangles, reference.neighbours(),
-                             reference.surface(), error_before, bound, 4, quad_bounds ? &to_reference : nullptr);
+                             reference.surface(), error_before, bound, 4, use_quad_bounds ? &to_reference : nullptr);
   const double reference_to_mesh = other.get();
 
   // what was measured gives its bounds for the next call: a quad's is to
   // the whole reference (which does not move), a reference triangle's
   // through the quads of the boundary triangles it went through
-  if(quad_bounds)
+  if(use_quad_bounds)
     for(std::size_t k = 0; k < measured_quads.size(); ++k)
     {
       const std::size_t q = measured_quads[k];
       const double w = (std::max)(to_reference[2 * k].surface_bound, to_reference[2 * k + 1].surface_bound);
       bounds.boundary_to_reference.set(q, w, &q, 1, corner);
     }
-  if(reference_bounds)
+  if(use_reference_bounds)
     for(std::size_t k = 0; k < measured_reference.size(); ++k)
     {
       const Distance_witness& w = to_boundary[k];
