@@ -635,6 +635,35 @@ void test_frame_kernel()
     }
   }
   HMO_CHECK(moved == 20 * 8 * 4);
+
+  // the early-exit trial (scaled_jacobian_if_above, the max-min smoothing's
+  // line searches): the exact value when every sample beats the threshold,
+  // otherwise a sample at or below it; both cases met many times
+  int exact = 0, stopped = 0;
+  for(int trial = 0; trial < 200; ++trial)
+  {
+    std::array<Vec3, 8> p = perturbed_cube();
+    if(trial % 3 == 0) p[trial % 8] = p[trial % 8] + Vec3{far(rng), far(rng), far(rng)};
+    double s[9];
+    HI::hex_samples(p, s);
+    const double sj = HI::scaled_jacobian(p);
+    for(double threshold : {-1.5, sj - 1e-12, sj, s[8], 0.5, 2.})
+    {
+      const double got = HI::scaled_jacobian_if_above(p, threshold);
+      if(sj > threshold)
+      {
+        HMO_CHECK(got == sj);
+        ++exact;
+      }
+      else
+      {
+        HMO_CHECK(!(got > threshold));
+        HMO_CHECK(std::find(s, s + 9, got) != s + 9);
+        ++stopped;
+      }
+    }
+  }
+  HMO_CHECK(exact > 200 && stopped > 200);
 }
 
 /// the exact sign of det[q - p, r - p, t - p] for double points, in

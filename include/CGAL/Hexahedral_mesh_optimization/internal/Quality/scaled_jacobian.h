@@ -302,6 +302,21 @@ inline double scaled_jacobian(const Hex_mesh_arrays& m, std::size_t h)
   return scaled_jacobian(m.corners(h));
 }
 
+/// For trials that only need to beat a value: `scaled_jacobian(p)` if every
+/// sample is above `threshold`; otherwise the first sample (corners in order,
+/// then the centre) that is not, without computing the others.
+inline double scaled_jacobian_if_above(const std::array<Vec3, 8>& p, double threshold)
+{
+  double m = std::numeric_limits<double>::max();
+  for(int i = 0; i < 9; ++i)
+  {
+    const double s = i < 8 ? corner_scaled_jacobian(p, i) : centre_scaled_jacobian(p);
+    if(!(s > threshold)) return s;
+    m = (std::min)(m, s);
+  }
+  return m;
+}
+
 /// An element counts as inverted when its scaled Jacobian is negative;
 /// untangling aims at every element strictly positive.
 inline bool is_inverted(double sj) { return sj < 0.; }

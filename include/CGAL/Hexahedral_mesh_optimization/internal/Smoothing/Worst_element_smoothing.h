@@ -207,7 +207,26 @@ public:
   }
 
 private:
+  using Corner = Hex_mesh_topology::Corner;
   static constexpr double softness = 60.;
+
+  /// `local_minimum` of the hexes whose corners at v are `around` with v at
+  /// x if it is above `threshold`; otherwise a sample at or below it (the
+  /// first found: the others are not computed)
+  double local_minimum_if_above(const std::vector<Vec3>& points, const std::vector<Corner>& around, const Vec3& x,
+                                double threshold) const
+  {
+    double m = 2.;
+    for(const Corner& c : around)
+    {
+      std::array<Vec3, 8> p = corners(points, c.hex);
+      p[c.local] = x;
+      const double s = scaled_jacobian_if_above(p, threshold);
+      if(!(s > threshold)) return s;
+      m = (std::min)(m, s);
+    }
+    return m;
+  }
 
   /// one sweep over `order` (worst first) in conflict-free batches (see the
   /// top); returns the number of steps accepted
@@ -375,10 +394,20 @@ private:
     };
     const double hard0 = hard_minimum();
     const std::size_t inverted_before = is_inverted(hard0) ? inverted() : 0;
+    // the trials stop at the first sample that does not beat hard0: the
+    // hexes worst first
+    std::vector<std::size_t> worst_first = around;
+    std::stable_sort(worst_first.begin(), worst_first.end(),
+                     [&sj](std::size_t a, std::size_t b) { return sj[a] < sj[b]; });
+    auto rises = [&] {
+      for(std::size_t k : worst_first)
+        if(!(scaled_jacobian_if_above(corners(points, k), hard0 + 1e-9) > hard0 + 1e-9)) return false;
+      return true;
+    };
     for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
     {
       for(std::size_t i = 0; i < verts.size(); ++i) points[verts[i]] = x0[i] + (t / gn) * g[i];
-      if(hard_minimum() > hard0 + 1e-9 && (inverted_before == 0 || inverted() <= inverted_before))
+      if(rises() && (inverted_before == 0 || inverted() <= inverted_before))
       {
         for(std::size_t k : around) sj[k] = hex_sj(points, k);
         return 1;
@@ -453,9 +482,14 @@ private:
     const double length = mean_edge_length_at(points, v);
     if(!(length > 0.)) return 0;
 
-    // the hexes around v, for the soft minimum's gradient
+    // the hexes around v, for the soft minimum's gradient, and their
+    // corners at v worst first, for the trials (the worst hex is the one most
+    // likely to fail a trial, which then stops there)
     std::vector<std::size_t> around;
     for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c) around.push_back(c->hex);
+    std::vector<Corner> worst_first(m_topo.vertex_corners_begin(v), m_topo.vertex_corners_end(v));
+    std::stable_sort(worst_first.begin(), worst_first.end(),
+                     [&sj](const Corner& a, const Corner& b) { return sj[a.hex] < sj[b.hex]; });
     const std::vector<std::size_t> single(1, v);
     std::vector<Vec3> gradient;
     std::size_t accepted = 0;
@@ -490,7 +524,7 @@ private:
         for(double t = 0.3 * length; t > 1e-4 * length; t *= 0.5)
         {
           const Vec3 x = constrained(v, x0 + t * dir, moves[m]);
-          const double f = local_minimum(points, v, x);
+          const double f = local_minimum_if_above(points, worst_first, x, f0 + 1e-9);
           // (a rise of the minimum keeps every valid hex valid unless one
           // around v is inverted: then their count may not rise)
           if(f > f0 + 1e-9 && (!is_inverted(f0) || inverted_around(points, v, x) <= inverted_around(points, v, x0)) &&
