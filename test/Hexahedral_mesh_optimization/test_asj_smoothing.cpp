@@ -585,6 +585,56 @@ void test_max_min_batches()
   HMO_CHECK(rw.msj_after > q0.msj + 0.05);
 }
 
+// The max-min smoothing skips the visits of settled vertices (moved
+// nothing at their last visit, nothing moved around them since): the same
+// positions as with every visit made, with and without a surface guard
+// (whose tests read two rings of boundary quads), and visits were skipped.
+void test_max_min_settled_vertices()
+{
+  // the boundary moved off its reference (the shell's own boundary) by up
+  // to 0.15 of an edge, so that the guard's bounds bind
+  const Hex_mesh_arrays shell = perturbed_shell(6, 12, 6, 0.25, 3);
+  const Hex_mesh_topology topo(shell);
+  const Target_surface target(shell);
+  std::vector<Vec3> ref_points;
+  std::vector<HMO::internal::Tri> ref_tris;
+  HMO::internal::triangulate_boundary(target.boundary(), shell.points, HMO::internal::Quad_split::diagonal_02,
+                                      ref_points, ref_tris);
+  Hex_mesh_arrays in = shell;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.15 / 6., 0.15 / 6.);
+  for(std::size_t v = 0; v < in.points.size(); ++v)
+    if(topo.is_boundary_vertex(v))
+      for(int d = 0; d < 3; ++d) in.points[v][d] += u(rng);
+  const HMO::internal::Surface_guard guard(target.boundary(), ref_points, ref_tris, in.points);
+  for(int guarded = 0; guarded < 2; ++guarded)
+  {
+    HMO::internal::Worst_element_smoothing_settings s;
+    s.max_sweeps = 40;
+    s.max_surface_deviation = guarded ? 5e-4 * bbox_diagonal(in.points) : std::numeric_limits<double>::infinity();
+    auto run = [&](bool skip, HMO::internal::Worst_element_smoothing_report& r) {
+      std::vector<Vec3> p = in.points;
+      HMO::internal::Worst_element_smoothing smoothing(topo, &target, guarded ? &guard : nullptr);
+      HMO::internal::Worst_element_smoothing_settings settings = s;
+      settings.skip_settled = skip;
+      r = smoothing.run(p, settings);
+      return p;
+    };
+    HMO::internal::Worst_element_smoothing_report skipping, visiting;
+    const std::vector<Vec3> p_skip = run(true, skipping), p_all = run(false, visiting);
+    std::size_t boundary_moved = 0;
+    for(std::size_t v = 0; v < in.points.size(); ++v)
+      if(topo.is_boundary_vertex(v) && p_skip[v] != in.points[v]) ++boundary_moved;
+    std::cout << "max-min settled vertices" << (guarded ? " (guarded)" : "") << ": " << skipping.skipped_visits
+              << " visits skipped in " << skipping.sweeps << " sweeps, MSJ " << skipping.msj_before << " -> "
+              << skipping.msj_after << ", " << boundary_moved << " boundary vertices moved" << std::endl;
+    HMO_CHECK(p_skip == p_all);
+    HMO_CHECK(skipping.moves == visiting.moves && skipping.sweeps == visiting.sweeps);
+    HMO_CHECK(skipping.skipped_visits > 0 && visiting.skipped_visits == 0);
+    HMO_CHECK(boundary_moved > 0);
+  }
+}
+
 // n^3 grid graded geometrically (each layer `ratio` times the previous one
 // along every axis, so that edges span ratio^(n-1)), interior vertices
 // perturbed by `a` times their local spacing
@@ -677,6 +727,7 @@ int main(int, char** argv)
   test_guard_answers();
   test_shared_mesh();
   test_max_min_batches();
+  test_max_min_settled_vertices();
   test_global_interior();
   return hmo_test::report(argv[0]);
 }

@@ -90,6 +90,9 @@ struct Worst_element_smoothing_settings
   /// each batch of a sweep is taken from this many vertices at the head of
   /// the worst-first list (see the top)
   std::size_t batch_window = 256;
+  /// skip the visits of settled vertices (see `m_settled`): the same moves
+  /// either way; off only to test that
+  bool skip_settled = true;
 };
 
 struct Worst_element_smoothing_report
@@ -97,6 +100,7 @@ struct Worst_element_smoothing_report
   double msj_before = 0., msj_after = 0.;
   int sweeps = 0;
   std::size_t moves = 0;
+  std::size_t skipped_visits = 0; ///< visits of settled vertices skipped
 };
 
 class Worst_element_smoothing
@@ -115,7 +119,8 @@ public:
     m_guarded = s.use_guard && m_guard && std::isfinite(m_max_deviation);
     const std::size_t nh = m_topo.number_of_hexes();
     std::vector<double> sj(nh);
-    for(std::size_t h = 0; h < nh; ++h) sj[h] = hex_sj(points, h);
+    parallel_for_each_index(nh, [&](std::size_t h) { sj[h] = hex_sj(points, h); }, 1024);
+    m_settled.assign(m_topo.number_of_vertices(), 0);
     Worst_element_smoothing_report rep;
     rep.msj_before = rep.msj_after = nh ? *std::min_element(sj.begin(), sj.end()) : 1.;
     std::vector<int> mark(m_topo.number_of_vertices(), -1);
@@ -134,7 +139,7 @@ public:
             if(mark[v] != sweep) { mark[v] = sweep; order.push_back({vertex_min(points, v, sj), v}); }
       std::sort(order.begin(), order.end());
       ++rep.sweeps;
-      rep.moves += sweep_in_batches(points, order, sj, s);
+      rep.moves += sweep_in_batches(points, order, sj, s, rep.skipped_visits);
       double now = *std::min_element(sj.begin(), sj.end());
       if(now - msj < s.min_gain && s.element_moves)
       {
@@ -149,7 +154,11 @@ public:
           if(sj[h] < below) worst.push_back({sj[h], h});
         std::sort(worst.begin(), worst.end());
         for(const auto& w : worst)
-          if(!time_limit_reached(s.time_limit)) rep.moves += improve_element(points, w.second, sj);
+          if(!time_limit_reached(s.time_limit) && improve_element(points, w.second, sj))
+          {
+            ++rep.moves;
+            for(std::size_t v : m_topo.hexes()[w.second]) if(!m_topo.is_boundary_vertex(v)) unsettle_around(v);
+          }
         now = *std::min_element(sj.begin(), sj.end());
       }
       idle = (now - msj < s.min_gain) ? idle + 1 : 0;
@@ -231,7 +240,8 @@ private:
   /// one sweep over `order` (worst first) in conflict-free batches (see the
   /// top); returns the number of steps accepted
   std::size_t sweep_in_batches(std::vector<Vec3>& points, const std::vector<std::pair<double, std::size_t> >& order,
-                               std::vector<double>& sj, const Worst_element_smoothing_settings& s)
+                               std::vector<double>& sj, const Worst_element_smoothing_settings& s,
+                               std::size_t& skipped)
   {
     const std::size_t nv = m_topo.number_of_vertices();
     m_hex_stamp.assign(m_topo.number_of_hexes(), 0);
@@ -243,7 +253,7 @@ private:
     std::vector<std::size_t> pending, batch, ring;
     pending.reserve(order.size());
     for(const auto& o : order) pending.push_back(o.second);
-    std::vector<std::size_t> accepted;
+    std::vector<std::ptrdiff_t> accepted;
     std::size_t moves = 0, stamp = 0, head = 0;
     const std::size_t window = (std::max)(std::size_t(1), s.batch_window);
     while(head < pending.size() && !time_limit_reached(s.time_limit))
@@ -262,13 +272,41 @@ private:
       std::copy_backward(pending.begin() + std::ptrdiff_t(head), pending.begin() + std::ptrdiff_t(out),
                          pending.begin() + std::ptrdiff_t(end));
       head = end - (out - head);
-      accepted.assign(batch.size(), 0);
+      // (-1: not visited, the time limit fired; a settled vertex is not
+      // visited either: it would fail again, see `m_settled`)
+      accepted.assign(batch.size(), -1);
       parallel_for_each_index(batch.size(), [&](std::size_t i) {
-        if(!time_limit_reached(s.time_limit)) accepted[i] = improve_vertex(points, batch[i], sj, s.steps_per_vertex);
+        if(m_settled[batch[i]] && s.skip_settled) accepted[i] = 0;
+        else if(!time_limit_reached(s.time_limit))
+          accepted[i] = std::ptrdiff_t(improve_vertex(points, batch[i], sj, s.steps_per_vertex));
       });
-      for(std::size_t a : accepted) moves += a;
+      for(std::size_t i = 0; i < batch.size(); ++i)
+      {
+        if(m_settled[batch[i]] && s.skip_settled) ++skipped;
+        if(accepted[i] == 0) m_settled[batch[i]] = 1;
+      }
+      for(std::size_t i = 0; i < batch.size(); ++i)
+        if(accepted[i] > 0)
+        {
+          moves += std::size_t(accepted[i]);
+          unsettle_around(batch[i]);
+        }
     }
     return moves;
+  }
+
+  /// u moved: the vertices whose visit reads it (those of the hexes around
+  /// u and, on the boundary, of the quads within two rings, which the
+  /// surface tests read: the relation is symmetric) are no longer settled
+  void unsettle_around(std::size_t u)
+  {
+    for(auto c = m_topo.vertex_corners_begin(u); c != m_topo.vertex_corners_end(u); ++c)
+      for(std::size_t w : m_topo.hexes()[c->hex]) m_settled[w] = 0;
+    if(!m_topo.is_boundary_vertex(u)) return;
+    thread_local std::vector<std::size_t> ring;
+    ring.clear();
+    m_topo.append_two_ring_boundary_vertices(u, ring);
+    for(std::size_t w : ring) m_settled[w] = 0;
   }
 
   /// Adds v to the batch `stamp` if no vertex of the batch sees its move or
@@ -553,6 +591,14 @@ private:
   // the batches of a sweep (`sweep_in_batches`): the batch that last
   // claimed each hex, read each vertex and moved each vertex
   std::vector<std::size_t> m_hex_stamp, m_read_stamp, m_member_stamp;
+  // A visit of a vertex depends only on the positions of the vertices it
+  // reads (those of its hexes and, on the boundary, of its two rings of
+  // quads): a vertex whose visit moved nothing, and around which nothing has
+  // moved since, would fail again. Such a vertex is settled (1) and its
+  // visits are skipped until a move around it clears the flag
+  // (`unsettle_around`): same moves, same bytes, without the trials of
+  // the stalled sweeps.
+  std::vector<unsigned char> m_settled;
 };
 
 } // namespace internal
