@@ -519,6 +519,23 @@ private:
     if(cls == Vertex_class::corner && !guarded) return 0;
     const double length = mean_edge_length_at(points, v);
     if(!(length > 0.)) return 0;
+    // the minimum around v, and that of the samples v does not move: a
+    // step must beat the first, which it cannot once the second is not
+    // above it (most vertices of a hex at the minimum are there)
+    double f0 = 2., unmoved = 2.;
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      double samples[9];
+      hex_samples(corners(points, c->hex), samples);
+      bool moves_with_v[9] = {false, false, false, false, false, false, false, false, true};
+      for(int j = 0; j < 4; ++j) moves_with_v[corner_samples_of_corner(c->local)[j]] = true;
+      for(int i = 0; i < 9; ++i)
+      {
+        f0 = (std::min)(f0, samples[i]);
+        if(!moves_with_v[i]) unmoved = (std::min)(unmoved, samples[i]);
+      }
+    }
+    if(!(unmoved > f0 + 1e-9)) return 0;
 
     // the hexes around v, for the soft minimum's gradient, and their
     // corners at v worst first, for the trials (the worst hex is the one most
@@ -545,10 +562,10 @@ private:
       }
       return m_guard->allows(points, v, x, allowed);
     };
-    double f0 = local_minimum(points, v, points[v]);
     const std::vector<Move> moves = moves_for(cls, guarded);
     for(int step = 0; step < steps; ++step)
     {
+      if(!(unmoved > f0 + 1e-9)) break;
       const Vec3 x0 = points[v];
       double hard = 0.;
       soft_minimum_gradient(points, around, single, gradient, hard);
