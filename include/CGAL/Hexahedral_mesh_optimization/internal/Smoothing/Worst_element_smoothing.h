@@ -510,6 +510,27 @@ private:
     return length / (std::max)(ne, 1);
   }
 
+  /// the minimum of the samples of the hexes around v (`local_minimum`),
+  /// and that of the samples v does not move (of each hex, the 4 corners
+  /// away from v): while the latter is not above the former, no move of v
+  /// can raise the minimum (most vertices of a hex at the minimum are in
+  /// that case)
+  void minimum_around(const std::vector<Vec3>& points, std::size_t v, double& all, double& unmoved) const
+  {
+    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+    {
+      double samples[9];
+      hex_samples(corners(points, c->hex), samples);
+      bool moves_with_v[9] = {false, false, false, false, false, false, false, false, true};
+      for(int j = 0; j < 4; ++j) moves_with_v[corner_samples_of_corner(c->local)[j]] = true;
+      for(int i = 0; i < 9; ++i)
+      {
+        all = (std::min)(all, samples[i]);
+        if(!moves_with_v[i]) unmoved = (std::min)(unmoved, samples[i]);
+      }
+    }
+  }
+
   /// up to `steps` ascent steps on vertex v; returns the number accepted
   std::size_t improve_vertex(std::vector<Vec3>& points, std::size_t v, std::vector<double>& sj, int steps) const
   {
@@ -519,22 +540,9 @@ private:
     if(cls == Vertex_class::corner && !guarded) return 0;
     const double length = mean_edge_length_at(points, v);
     if(!(length > 0.)) return 0;
-    // the minimum around v, and that of the samples v does not move: a
-    // step must beat the first, which it cannot once the second is not
-    // above it (most vertices of a hex at the minimum are there)
+    // a step must beat f0, which it cannot once `unmoved` is not above it
     double f0 = 2., unmoved = 2.;
-    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-    {
-      double samples[9];
-      hex_samples(corners(points, c->hex), samples);
-      bool moves_with_v[9] = {false, false, false, false, false, false, false, false, true};
-      for(int j = 0; j < 4; ++j) moves_with_v[corner_samples_of_corner(c->local)[j]] = true;
-      for(int i = 0; i < 9; ++i)
-      {
-        f0 = (std::min)(f0, samples[i]);
-        if(!moves_with_v[i]) unmoved = (std::min)(unmoved, samples[i]);
-      }
-    }
+    minimum_around(points, v, f0, unmoved);
     if(!(unmoved > f0 + 1e-9)) return 0;
 
     // the hexes around v, for the soft minimum's gradient, and their
