@@ -280,17 +280,18 @@ private:
         else if(!time_limit_reached(s.time_limit))
           accepted[i] = std::ptrdiff_t(improve_vertex(points, batch[i], sj, s.steps_per_vertex));
       });
+      // (the members of a batch read nothing the others move: the order of
+      // these updates does not matter)
       for(std::size_t i = 0; i < batch.size(); ++i)
       {
         if(m_settled[batch[i]] && s.skip_settled) ++skipped;
         if(accepted[i] == 0) m_settled[batch[i]] = 1;
-      }
-      for(std::size_t i = 0; i < batch.size(); ++i)
-        if(accepted[i] > 0)
+        else if(accepted[i] > 0)
         {
           moves += std::size_t(accepted[i]);
           unsettle_around(batch[i]);
         }
+      }
     }
     return moves;
   }
