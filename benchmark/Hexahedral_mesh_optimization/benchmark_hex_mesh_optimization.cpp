@@ -75,7 +75,13 @@
 //                optimised with the unperturbed boundary as reference. One
 //                line per mesh and mode, and a total per mode: runs ending at
 //                0 inverted, runs ending at or above the unperturbed MSJ, the
-//                worst surface error, the optimiser's time.
+//                worst surface error, the optimiser's time. With
+//                --stress-write DIR, every perturbed input is written there
+//                (MEDIT), with the reference surface of each mesh (OFF) and
+//                one line per run in DIR/stress_runs.tsv, so that a failed
+//                run can be repeated with the tool:
+//                  hexmesh-optimize DIR/<input>.mesh out.mesh
+//                    --reference DIR/<mesh>_reference.off
 //
 // Options:
 //   --untangle              the --untangle mode; with --scaling, only the
@@ -98,6 +104,7 @@
 // they are refused (exit status 2), as is any unknown option.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
@@ -701,8 +708,70 @@ static double median_of(std::vector<double> v)
 /// (0.005). One line per mesh and mode: runs ending with 0 inverted, runs
 /// whose MSJ ends at or above the unperturbed mesh's, the worst surface
 /// error (against the unperturbed boundary), the optimiser's time.
-static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads)
+/// `name` (a path under the data folder) as a file name stem: "low-quality/cat_2.mesh" -> "low-quality_cat_2"
+static std::string stem_of(const std::string& name)
 {
+  std::string s = name.substr(0, name.rfind('.'));
+  std::replace(s.begin(), s.end(), '/', '_');
+  return s;
+}
+
+/// `--stress-write`: the perturbed inputs, the references and the table of
+/// the runs, into an existing folder
+class Stress_writer
+{
+public:
+  explicit Stress_writer(const std::string& dir) : m_dir(dir)
+  {
+    if(m_dir.empty()) return;
+    m_runs.open(m_dir + "/stress_runs.tsv");
+    m_runs << "input\treference\tamplitude\tinverted_in\tinverted_out\tmsj_out\tasj_out\tsurface_error\tseconds\n";
+  }
+  bool enabled() const { return !m_dir.empty(); }
+  bool good() const { return !enabled() || bool(m_runs); }
+
+  /// writes the reference of mesh `name`; returns its path
+  std::string write_reference(const std::string& name, const HMO::internal::Triangle_surface& reference)
+  {
+    const std::string path = m_dir + "/" + stem_of(name) + "_reference.off";
+    if(!CGAL::IO::write_polygon_mesh(path, reference, CGAL::parameters::stream_precision(17)))
+      std::cerr << "benchmark_hex_mesh_optimization: could not write " << path << "\n";
+    return path;
+  }
+
+  /// writes the perturbed input of a run; returns its path
+  std::string write_input(const std::string& name, bool interior_only, int seed, const Mesh& mesh)
+  {
+    const std::string path =
+      m_dir + "/" + stem_of(name) + (interior_only ? "_interior" : "_all") + "_seed" + std::to_string(seed) + ".mesh";
+    CGAL::IO::Hex_mesh_io_error err;
+    if(!CGAL::IO::write_hex_mesh(path, mesh, CGAL::IO::Hex_mesh_fields(), &err))
+      std::cerr << "benchmark_hex_mesh_optimization: " << err.what() << "\n";
+    return path;
+  }
+
+  void add_run(const std::string& input, const std::string& reference, double amplitude,
+               const HMO::Optimization_result& r)
+  {
+    m_runs << input << '\t' << reference << '\t' << amplitude << '\t' << r.inverted_before << '\t'
+           << r.inverted_after << '\t' << r.msj_after << '\t' << r.asj_after << '\t' << r.surface_error << '\t'
+           << r.seconds << std::endl;
+  }
+
+private:
+  std::string m_dir;
+  std::ofstream m_runs;
+};
+
+static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads,
+                       const std::string& write_dir)
+{
+  Stress_writer writer(write_dir);
+  if(!writer.good())
+  {
+    std::cerr << "benchmark_hex_mesh_optimization: cannot write " << write_dir << "/stress_runs.tsv\n";
+    return 1;
+  }
   const std::vector<std::string> meshes = {
     "stress-base/fandisk.vtk", "stress-base/hanger.vtk", "stress-base/kitty.vtk",
     "amips/rockerarm_li12.vtk", "amips/fertility_gregson11.mesh",
@@ -730,6 +799,7 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
     const double msj0 = CGAL::hex_mesh_quality(base).msj;
     HMO::internal::Triangle_surface reference;
     HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
+    const std::string reference_path = writer.enabled() ? writer.write_reference(name, reference) : std::string();
     for(int mode = 0; mode < 2; ++mode)
     {
       Stress_line line;
@@ -738,8 +808,10 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
         const double amplitude = seeds > 1 ? 0.3 + 0.5 * k / (seeds - 1) : 0.55;
         Mesh mesh = base;
         perturb_by_local_edge(mesh, amplitude, unsigned(k + 1), mode == 0);
+        const std::string input_path = writer.enabled() ? writer.write_input(name, mode == 0, k + 1, mesh) : std::string();
         Setup_visitor visitor;
         const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
+        if(writer.enabled()) writer.add_run(input_path, reference_path, amplitude, r);
         for(Stress_line* l : {&line, &total[mode]})
         {
           ++l->runs;
@@ -995,6 +1067,8 @@ static void usage(std::ostream& out)
          "  --scaling-max-hexes N  with --scaling, skip the cases of more than N hexes\n"
          "  --stress               stress sets: every valid shared mesh perturbed (interior / all vertices)\n"
          "  --stress-seeds N       with --stress, N perturbations per mesh and mode (default 5)\n"
+         "  --stress-write DIR     with --stress, write each perturbed input, the reference surfaces and\n"
+         "                         a line per run (stress_runs.tsv) into the existing folder DIR\n"
          "DATA_DIR defaults to " HMO_SHARED_DATA_DIR "\n";
 }
 
@@ -1013,6 +1087,7 @@ int main(int argc, char** argv)
   std::string dir = HMO_SHARED_DATA_DIR, only;
   bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false;
   long long threads = 0, max_hexes = 0, stress_seeds = 5;
+  std::string stress_write;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -1038,6 +1113,7 @@ int main(int argc, char** argv)
         return 2;
       }
     }
+    else if(a == "--stress-write" && has_value) stress_write = argv[++i];
     else if(a == "--scaling-max-hexes" && has_value)
     {
       if(!parse_count(argv[++i], 1, max_hexes))
@@ -1058,6 +1134,16 @@ int main(int argc, char** argv)
       return 2;
     }
     else dir = a;
+  }
+  if(!stress_write.empty())
+  {
+    struct stat ws;
+    if(!stress_mode || ::stat(stress_write.c_str(), &ws) != 0 || !S_ISDIR(ws.st_mode))
+    {
+      std::cerr << "benchmark_hex_mesh_optimization: --stress-write needs --stress and an existing folder: "
+                << stress_write << "\n";
+      return 2;
+    }
   }
   if(threads_compare && threads > 0)
   {
@@ -1091,7 +1177,7 @@ int main(int argc, char** argv)
       std::cerr << "benchmark_hex_mesh_optimization: --stress runs under one thread setting (--threads N)\n";
       return 2;
     }
-    return stress_sets(dir, only, int(stress_seeds), int(threads));
+    return stress_sets(dir, only, int(stress_seeds), int(threads), stress_write);
   }
   return benchmark_rows(dir, untangle_only, only, thread_runs);
 }
