@@ -129,6 +129,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iomanip>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -725,6 +726,7 @@ public:
   {
     if(m_dir.empty()) return;
     m_runs.open(m_dir + "/stress_runs.tsv");
+    m_runs << std::setprecision(10); // as the tool's --report
     m_runs << "input\treference\tamplitude\tinverted_in\tinverted_out\tmsj_out\tasj_out\tsurface_error\tseconds\n";
   }
   bool enabled() const { return !m_dir.empty(); }
