@@ -285,9 +285,89 @@ static void test_topology_edges()
 #endif
 }
 
+/// The foldover-free energy's analytic gradient against central
+/// differences, with and without its volume term, ε > 0 and ε = 0, on a
+/// perturbed 3x3x3 grid, every vertex free, the boundary ones anchored where
+/// they were before the perturbation (with sliding), one interior vertex
+/// pushed across its cell when ε > 0; and the volume term grows when one of
+/// two hexes shrinks.
+static void test_barrier_energy_gradient()
+{
+  namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+  for(int inverted = 0; inverted < 2; ++inverted)
+  {
+    HMOI::Hex_mesh_arrays m = hmo_test::grid(3, 3, 3);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.08, 0.08);
+    const HMOI::Hex_mesh_topology topo(m);
+    HMOI::Local_region region;
+    for(std::size_t h = 0; h < m.hexes.size(); ++h) region.hexes.push_back(h);
+    std::vector<HMOI::Boundary_constraint> bc(m.points.size());
+    std::size_t pushed = 0;
+    for(std::size_t v = 0; v < m.points.size(); ++v)
+    {
+      region.free_vertices.push_back(v);
+      if(topo.is_boundary_vertex(v))
+      {
+        bc[v].type = HMOI::Vertex_class::regular;
+        bc[v].anchor = m.points[v];
+        bc[v].direction = HMOI::Vec3{0., 0., 1.};
+      }
+      else pushed = v;
+      for(int d = 0; d < 3; ++d) m.points[v][d] += u(rng);
+    }
+    if(inverted) m.points[pushed][0] += 0.6; // past its neighbour 1/3 further
+    for(double theta : {0., 0.1, 1.})
+    {
+      HMOI::Barrier_untangler b(topo, region, bc, 3.);
+      b.set_sliding_weight(0.5);
+      b.set_volume_weight(theta);
+      const double eps = inverted ? 1e-3 : 0.;
+      Eigen::VectorXd g, unused;
+      const double e = b.energy_at(m.points, eps, g);
+      HMO_CHECK(std::isfinite(e) && g.size() == Eigen::Index(3 * region.free_vertices.size()));
+      double worst = 0., largest = 0.;
+      for(std::size_t i = 0; i < region.free_vertices.size(); ++i)
+        for(int d = 0; d < 3; ++d)
+        {
+          const double h = 1e-6;
+          std::vector<HMOI::Vec3> p = m.points;
+          p[region.free_vertices[i]][d] += h;
+          const double up = b.energy_at(p, eps, unused);
+          p[region.free_vertices[i]][d] -= 2. * h;
+          const double down = b.energy_at(p, eps, unused);
+          worst = (std::max)(worst, std::abs((up - down) / (2. * h) - g[Eigen::Index(3 * i) + d]));
+          largest = (std::max)(largest, std::abs(g[Eigen::Index(3 * i) + d]));
+        }
+      std::printf("barrier gradient: inverted %d theta %g: largest %g, worst difference %g\n", inverted, theta, largest, worst);
+      HMO_CHECK(largest > 0. && worst <= 1e-5 * largest);
+    }
+  }
+  // two hexes, the first shrunk to half its length: the volume term grows
+  // (the shape term sees only the first hex's new proportions)
+  HMOI::Hex_mesh_arrays m = hmo_test::grid(2, 1, 1);
+  const HMOI::Hex_mesh_topology topo(m);
+  HMOI::Local_region region;
+  region.hexes = {0, 1};
+  std::vector<HMOI::Boundary_constraint> bc(m.points.size());
+  Eigen::VectorXd g;
+  auto energies = [&](double theta) {
+    HMOI::Barrier_untangler b(topo, region, bc, 0.);
+    b.set_volume_weight(theta);
+    std::vector<HMOI::Vec3> p = m.points;
+    const double before = b.energy_at(p, 1e-3, g);
+    for(HMOI::Vec3& q : p) if(q[0] < 0.75) q = HMOI::Vec3{0.5 * q[0] + 0.25, q[1], q[2]}; // the first hex half as long
+    return std::make_pair(before, b.energy_at(p, 1e-3, g));
+  };
+  const auto shape = energies(0.), with_volume = energies(1.);
+  HMO_CHECK(with_volume.first > shape.first);
+  HMO_CHECK(with_volume.second - shape.second > with_volume.first - shape.first);
+}
+
 int main(int, char** argv)
 {
   test_topology_edges();
+  test_barrier_energy_gradient();
   test_unresolved_elements();
   test_surface_stage_with_inverted_hex();
   // 1. a perturbed 6x6x6 grid with interior vertices pushed across their cells

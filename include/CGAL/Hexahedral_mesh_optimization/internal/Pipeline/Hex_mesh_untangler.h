@@ -354,23 +354,31 @@ private:
     std::vector<double> weights;
     if(m_s.relax_surface) weights.assign(std::begin(sc.barrier_weights_relaxed), std::end(sc.barrier_weights_relaxed));
     else weights.assign(std::begin(sc.barrier_weights_fixed), std::end(sc.barrier_weights_fixed));
-    for(std::size_t pass = 0; pass < weights.size() && !stopped(); ++pass)
+    // the passes, then (`barrier_volume_weight`) one with the volume term
+    // on regions one ring wider, at the last pass's weight
+    const std::size_t passes = weights.size() + (sc.barrier_volume_weight > 0. && !weights.empty() ? 1 : 0);
+    bool with_volume = false;
+    for(std::size_t pass = 0; pass < passes && !stopped(); ++pass)
     {
       const std::vector<std::size_t> bad = inverted_hexes(mesh);
       if(bad.empty()) break;
       ++sr.rounds;
+      with_volume = pass == weights.size();
+      const double w = weights[(std::min)(pass, weights.size() - 1)] * w0;
       std::vector<Boundary_constraint> bc;
       ts.update_constraints(mesh.points, bc);
       for_each_region(extract_local_regions(topo, bad, 2 + int(pass)), [&](const Local_region& region) {
         if(stopped()) return;
-        Barrier_untangler b(topo, region, bc, weights[pass] * w0);
-        b.set_sliding_weight(sc.barrier_sliding_fraction * weights[pass] * w0);
+        Barrier_untangler b(topo, region, bc, w);
+        b.set_sliding_weight(sc.barrier_sliding_fraction * w);
+        if(with_volume) b.set_volume_weight(sc.barrier_volume_weight);
         b.set_time_limit(m_s.time_limit);
         run_on_region(b, region, mesh, false);
       });
       m_visitor.round_finished("barrier", int(pass), count_inverted(mesh));
     }
     sr.details = "foldover-free energy on the 8 corner frames and the centre frame";
+    if(with_volume) sr.details += "; a last pass with its volume term";
     end_stage(sr, mesh, t, res);
   }
 

@@ -13,8 +13,15 @@
 //
 //     f_ε(J) = |J|²_F / χ(det J, ε)^(2/3),   χ(D, ε) = (D + √(ε² + D²)) / 2,
 //
-// plus the boundary energy of Eq. 6 (same rows as the edge-angle stage),
-// minimised by L-BFGS with a backtracking line search. Two uses:
+// optionally plus the paper's volume term, θ (d² + 1) / χ(d, ε / s) with
+// d = det J / s, s the cube of the region's mean edge length
+// (`set_volume_weight`), and the boundary energy of Eq. 6 (same rows as the
+// edge-angle stage), minimised by L-BFGS with a backtracking line search.
+// The shape term alone does not depend on a frame's size, and while ε > 0 a
+// frame much smaller than ε costs less the smaller it gets: a frame the
+// shape term cannot untangle can collapse instead (see
+// `Optimization_schedule::barrier_volume_weight`). The volume term makes
+// that cost more than untangling it. Two uses:
 //
 // * `run()` — untangling: ε decreased between passes as in the reference
 //   (ε → 0 as the frames become positive). The untangling guarantee is kept
@@ -69,6 +76,8 @@ public:
   /// weight of the sliding of a boundary vertex along its surface or feature
   /// line, away from where it was when the constraints were computed
   void set_sliding_weight(double w) { m_wt = w; }
+  /// weight θ of the volume term (0, the default: the shape term alone)
+  void set_volume_weight(double theta) { m_theta = theta; }
 
   /// Untangling: `passes` passes of L-BFGS on the free vertices of the region,
   /// ε shrinking as the worst frame becomes positive.
@@ -102,6 +111,22 @@ public:
     lbfgs(x, iterations);
     write(x, points);
     return true;
+  }
+
+  /// The energy with the region's free vertices at `points` and the given
+  /// ε (0: the injective energy), and its gradient, 3 coordinates per free
+  /// vertex in the order of `free_vertices` (for the tests of the analytic
+  /// gradient). The frame size of the volume term is the one of the first
+  /// call, as a run fixes it at its start.
+  double energy_at(const std::vector<Vec3>& points, double eps, Eigen::VectorXd& gradient)
+  {
+    const double first_scale = m_scale;
+    Eigen::VectorXd x;
+    setup(points, x);
+    if(m_scale_measured) m_scale = first_scale;
+    m_scale_measured = true;
+    m_eps = eps;
+    return energy(x, &gradient);
   }
 
 private:
@@ -240,6 +265,9 @@ private:
       for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
       const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
       e += f2 * c23;
+      // the volume term, in units of the region's frame size s = m_scale
+      const double d = det / m_scale, cs = chi / m_scale;
+      if(m_theta > 0.) e += m_theta * (d * d + 1.) / cs;
       if(!gp) continue;
       // cofactor matrix: d det / d J
       double cof[3][3];
@@ -252,7 +280,9 @@ private:
       cof[2][0] = j[0][1] * j[1][2] - j[0][2] * j[1][1];
       cof[2][1] = j[0][2] * j[1][0] - j[0][0] * j[1][2];
       cof[2][2] = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-      const double a1 = 2. * c23, a2 = (2. / 3.) * f2 * c23 / chi * dchi;
+      const double a1 = 2. * c23;
+      double a2 = (2. / 3.) * f2 * c23 / chi * dchi; // −∂e/∂det so far
+      if(m_theta > 0.) a2 -= m_theta * (2. * d / cs - (d * d + 1.) * dchi / (cs * cs)) / m_scale;
       double g[3][3];
       for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
       if(s < 8)
@@ -383,6 +413,8 @@ private:
   const std::vector<Boundary_constraint>* m_bc;
   double m_wb;
   double m_wt = 0.;
+  double m_theta = 0.;
+  bool m_scale_measured = false; // by `energy_at`
   double m_eps = 1.;
   double m_scale = 1.;
   const Time_limit* m_time_limit = nullptr;
