@@ -8,16 +8,7 @@
 
 cmake_minimum_required(VERSION 3.19) # string(JSON)
 
-# check(<message> <condition>...): the condition as for if()
-set(failures 0)
-function(check message)
-  if(${ARGN})
-  else()
-    message(SEND_ERROR "check failed: ${message}")
-    math(EXPR n "${failures} + 1")
-    set(failures ${n} PARENT_SCOPE)
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/test_check.cmake) # check()
 
 # run(<result prefix> args...): sets <prefix>_rc, <prefix>_out, <prefix>_err
 function(run prefix)
