@@ -701,14 +701,6 @@ static double median_of(std::vector<double> v)
   return v[v.size() / 2];
 }
 
-/// The stress sets: every valid shared mesh, perturbed by
-/// `perturb_by_local_edge` with `seeds` seeds per mode (interior vertices
-/// only, every vertex), amplitudes spread evenly over 0.3 to 0.8 of the
-/// local edge length, then optimised by `CGAL::optimize_hex_mesh` with the
-/// unperturbed boundary as reference surface and the default tolerance
-/// (0.005). One line per mesh and mode: runs ending with 0 inverted, runs
-/// whose MSJ ends at or above the unperturbed mesh's, the worst surface
-/// error (against the unperturbed boundary), the optimiser's time.
 /// `name` (a path under the data folder) as a file name stem: "low-quality/cat_2.mesh" -> "low-quality_cat_2"
 static std::string stem_of(const std::string& name)
 {
@@ -765,6 +757,14 @@ private:
   std::ofstream m_runs;
 };
 
+/// The stress sets: every valid shared mesh, perturbed by
+/// `perturb_by_local_edge` with `seeds` seeds per mode (interior vertices
+/// only, every vertex), amplitudes spread evenly over 0.3 to 0.8 of the
+/// local edge length, then optimised by `CGAL::optimize_hex_mesh` with the
+/// unperturbed boundary as reference surface and the default tolerance
+/// (0.005). One line per mesh and mode: runs ending with 0 inverted, runs
+/// whose MSJ ends at or above the unperturbed mesh's, the worst surface
+/// error (against the unperturbed boundary), the optimiser's time.
 static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads,
                        const std::string& write_dir)
 {

@@ -290,7 +290,7 @@ static void test_topology_edges()
 /// perturbed 3x3x3 grid, every vertex free, the boundary ones anchored where
 /// they were before the perturbation (with sliding), one interior vertex
 /// pushed across its cell when ε > 0; and the volume term grows when one of
-/// two hexes shrinks.
+/// two hexes smaller than its frame size shrinks.
 static void test_barrier_energy_gradient()
 {
   namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
@@ -324,7 +324,8 @@ static void test_barrier_energy_gradient()
       b.set_volume_weight(theta);
       const double eps = inverted ? 1e-3 : 0.;
       Eigen::VectorXd g, unused;
-      const double e = b.energy_at(m.points, eps, g);
+      const double scale = 1. / 27.; // the grid's edge cubed
+      const double e = b.energy_at(m.points, eps, scale, g);
       HMO_CHECK(std::isfinite(e) && g.size() == Eigen::Index(3 * region.free_vertices.size()));
       double worst = 0., largest = 0.;
       for(std::size_t i = 0; i < region.free_vertices.size(); ++i)
@@ -333,9 +334,9 @@ static void test_barrier_energy_gradient()
           const double h = 1e-6;
           std::vector<HMOI::Vec3> p = m.points;
           p[region.free_vertices[i]][d] += h;
-          const double up = b.energy_at(p, eps, unused);
+          const double up = b.energy_at(p, eps, scale, unused);
           p[region.free_vertices[i]][d] -= 2. * h;
-          const double down = b.energy_at(p, eps, unused);
+          const double down = b.energy_at(p, eps, scale, unused);
           worst = (std::max)(worst, std::abs((up - down) / (2. * h) - g[Eigen::Index(3 * i) + d]));
           largest = (std::max)(largest, std::abs(g[Eigen::Index(3 * i) + d]));
         }
@@ -343,8 +344,9 @@ static void test_barrier_energy_gradient()
       HMO_CHECK(largest > 0. && worst <= 1e-5 * largest);
     }
   }
-  // two hexes, the first shrunk to half its length: the volume term grows
-  // (the shape term sees only the first hex's new proportions)
+  // two hexes of 0.5 x 1 x 1, the first shrunk to half its length, frame
+  // size 1: the volume term grows (the shape term sees only the first
+  // hex's new proportions)
   HMOI::Hex_mesh_arrays m = hmo_test::grid(2, 1, 1);
   const HMOI::Hex_mesh_topology topo(m);
   HMOI::Local_region region;
@@ -355,9 +357,9 @@ static void test_barrier_energy_gradient()
     HMOI::Barrier_untangler b(topo, region, bc, 0.);
     b.set_volume_weight(theta);
     std::vector<HMOI::Vec3> p = m.points;
-    const double before = b.energy_at(p, 1e-3, g);
+    const double before = b.energy_at(p, 1e-3, 1., g);
     for(HMOI::Vec3& q : p) if(q[0] < 0.75) q = HMOI::Vec3{0.5 * q[0] + 0.25, q[1], q[2]}; // the first hex half as long
-    return std::make_pair(before, b.energy_at(p, 1e-3, g));
+    return std::make_pair(before, b.energy_at(p, 1e-3, 1., g));
   };
   const auto shape = energies(0.), with_volume = energies(1.);
   HMO_CHECK(with_volume.first > shape.first);

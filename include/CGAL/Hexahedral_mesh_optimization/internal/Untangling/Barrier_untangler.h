@@ -113,18 +113,16 @@ public:
     return true;
   }
 
-  /// The energy with the region's free vertices at `points` and the given
-  /// ε (0: the injective energy), and its gradient, 3 coordinates per free
-  /// vertex in the order of `free_vertices` (for the tests of the analytic
-  /// gradient). The frame size of the volume term is the one of the first
-  /// call, as a run fixes it at its start.
-  double energy_at(const std::vector<Vec3>& points, double eps, Eigen::VectorXd& gradient)
+  /// The energy with the region's free vertices at `points`, the given ε
+  /// (0: the injective energy) and the volume term's frame size
+  /// `frame_scale` (a run takes the region's mean edge length cubed at its
+  /// start), and its gradient, 3 coordinates per free vertex in the order
+  /// of `free_vertices` (for the tests of the analytic gradient)
+  double energy_at(const std::vector<Vec3>& points, double eps, double frame_scale, Eigen::VectorXd& gradient)
   {
-    const double first_scale = m_scale;
     Eigen::VectorXd x;
     setup(points, x);
-    if(m_scale_measured) m_scale = first_scale;
-    m_scale_measured = true;
+    m_scale = frame_scale;
     m_eps = eps;
     return energy(x, &gradient);
   }
@@ -266,8 +264,11 @@ private:
       const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
       e += f2 * c23;
       // the volume term, in units of the region's frame size s = m_scale
-      const double d = det / m_scale, cs = chi / m_scale;
-      if(m_theta > 0.) e += m_theta * (d * d + 1.) / cs;
+      if(m_theta > 0.)
+      {
+        const double d = det / m_scale, cs = chi / m_scale;
+        e += m_theta * (d * d + 1.) / cs;
+      }
       if(!gp) continue;
       // cofactor matrix: d det / d J
       double cof[3][3];
@@ -282,7 +283,11 @@ private:
       cof[2][2] = j[0][0] * j[1][1] - j[0][1] * j[1][0];
       const double a1 = 2. * c23;
       double a2 = (2. / 3.) * f2 * c23 / chi * dchi; // −∂e/∂det so far
-      if(m_theta > 0.) a2 -= m_theta * (2. * d / cs - (d * d + 1.) * dchi / (cs * cs)) / m_scale;
+      if(m_theta > 0.)
+      {
+        const double d = det / m_scale, cs = chi / m_scale;
+        a2 -= m_theta * (2. * d / cs - (d * d + 1.) * dchi / (cs * cs)) / m_scale;
+      }
       double g[3][3];
       for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
       if(s < 8)
@@ -414,7 +419,6 @@ private:
   double m_wb;
   double m_wt = 0.;
   double m_theta = 0.;
-  bool m_scale_measured = false; // by `energy_at`
   double m_eps = 1.;
   double m_scale = 1.;
   const Time_limit* m_time_limit = nullptr;
