@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -964,11 +965,93 @@ void test_surface_error_after_change()
   HMO_CHECK(grew >= 3);
 }
 
+// Feature recovery (Feature_recovery.h): a box grid whose boundary
+// vertices all moved off the creases, with the 12-triangle box as reference
+void test_feature_recovery()
+{
+  const std::size_t n = 6;
+  const double h = 1. / double(n);
+  const HMO::Hex_mesh_arrays original = grid(n, n, n);
+  HMO::Hex_mesh_arrays m = original;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.3 * h, 0.3 * h);
+  for(Vec3& p : m.points) // every vertex, in every direction: none stays on a crease
+    for(int d = 0; d < 3; ++d) p[d] += u(rng);
+  const std::vector<Vec3> box_points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                        {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<HMO::Tri> box_triangles = {{{0, 2, 1}}, {{0, 3, 2}}, {{4, 5, 6}}, {{4, 6, 7}},
+                                               {{0, 1, 5}}, {{0, 5, 4}}, {{1, 2, 6}}, {{1, 6, 5}},
+                                               {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}};
+  // the features of the reference itself
+  const HMO::Reference_features rf = HMO::detect_reference_features(box_points, box_triangles, 150., 60., 2. * h, 30.);
+  HMO_CHECK(rf.corners.size() == 8);
+  HMO_CHECK(rf.curves.size() == 12);
+  HMO_CHECK(std::set<std::size_t>(rf.triangle_patch.begin(), rf.triangle_patch.end()).size() == 6);
+  for(const std::vector<std::size_t>& around : rf.corner_patches) HMO_CHECK(around.size() == 3);
+
+  HMO::Target_surface_parameters param;
+  param.reference_feature_angle = 150.;
+  const HMO::Target_surface ts(m, box_points, box_triangles, param);
+  const HMO::Feature_recovery_summary& fr = ts.feature_recovery_summary();
+  std::cout << "perturbed box, recovered from its reference: " << HMO::describe(fr) << std::endl;
+  HMO_CHECK(fr.recovered);
+  HMO_CHECK(fr.reference_corners == 8 && fr.corners_matched == 8);
+  HMO_CHECK(fr.reference_curves == 12 && fr.curves_recovered == 12);
+  check_box_classes(ts, n, n, n, "perturbed box, recovered");
+  // the grid's own corner and edge vertices took the corners and creases,
+  // and their targets are on them; every target is on the box
+  double off_box = 0., off_feature = 0.;
+  for(std::size_t i = 0; i < ts.boundary().vertices.size(); ++i)
+  {
+    const std::size_t v = ts.boundary().vertices[i];
+    const Vec3& t = ts.target_positions()[i];
+    off_box = (std::max)(off_box, distance_to_box_surface(t, Vec3{0, 0, 0}, Vec3{1, 1, 1}));
+    const int planes = on_box_planes(original.points[v], Vec3{0, 0, 0}, Vec3{1, 1, 1}, 1e-12);
+    const Vertex_class expected = planes == 3 ? Vertex_class::corner : planes == 2 ? Vertex_class::sharp : Vertex_class::regular;
+    HMO_CHECK(ts.vertex_class(v) == expected);
+    if(planes >= 2) HMO_CHECK(on_box_planes(t, Vec3{0, 0, 0}, Vec3{1, 1, 1}, 1e-9) == planes);
+    if(planes >= 2) off_feature = (std::max)(off_feature, HMO::norm(t - original.points[v]));
+  }
+  std::cout << "  targets off the box " << off_box << ", feature vertices off their grid place " << off_feature / h
+            << " edges" << std::endl;
+  HMO_CHECK(off_box < 1e-9);
+  HMO_CHECK(off_feature < 0.5 * h);
+
+  // a faceted round surface: its edges spread over all angles, no clear
+  // features, and the reference is left to the dihedral-angle classification
+  {
+    std::vector<Vec3> points;
+    std::vector<HMO::Tri> triangles;
+    const std::size_t k = 8;
+    std::mt19937 g(5);
+    std::uniform_real_distribution<double> r(0.85, 1.15);
+    const HMO::Hex_mesh_arrays cube = grid(k, k, k);
+    const HMO::Hex_mesh_boundary b = HMO::extract_boundary(cube);
+    for(std::size_t v : b.vertices)
+    {
+      const Vec3 d = cube.points[v] - Vec3{0.5, 0.5, 0.5};
+      points.push_back((r(g) / HMO::norm(d)) * d);
+    }
+    for(const auto& q : b.quads)
+    {
+      triangles.push_back({{b.boundary_index[q[0]], b.boundary_index[q[1]], b.boundary_index[q[2]]}});
+      triangles.push_back({{b.boundary_index[q[0]], b.boundary_index[q[2]], b.boundary_index[q[3]]}});
+    }
+    const HMO::Reference_features noisy = HMO::detect_reference_features(points, triangles, 150., 60., 0., 30.);
+    const HMO::Reference_features unchecked = HMO::detect_reference_features(points, triangles, 150., 60., 0., 0.);
+    std::cout << "  rough sphere: " << unchecked.curves.size() << " crease curves at 150 degrees, "
+              << noisy.curves.size() << " once the margin is checked" << std::endl;
+    HMO_CHECK(!unchecked.empty());
+    HMO_CHECK(noisy.empty());
+  }
+}
+
 int main(int, char** argv)
 {
   test_boundary_extraction();
   test_features();
   test_crease_hysteresis();
+  test_feature_recovery();
   test_constraints();
   test_surface_error();
   test_culled_distance();

@@ -74,6 +74,15 @@
 //   chains between two junctions are kept (a narrow chamfer is a feature).
 // - Classes: sharp degree 0 → regular, 2 → sharp, 1 (end of a feature line)
 //   or ≥ 3 → corner.
+// - Feature recovery (`reference_feature_angle` > 0, set by the pipelines
+//   for a reference given by the user): the creases and corners come from
+//   the reference itself (Reference_features.h), matched to boundary chains
+//   and vertices (Feature_recovery.h) on the boundary smoothed
+//   `matching_smoothing_rounds` times; the chain and corner vertices go onto
+//   them, the others are projected and smoothed around them
+//   (`smoothed_around_features`), and the smoothing, fold masks and
+//   dihedral classification above are not used. A reference without clear
+//   creases falls back to them.
 // - Sharp anchors: the closest point on the vertex's own feature line, looked
 //   for within ±`feature_search_window` segments of the vertex's place on the
 //   line (covers whole lines up to twice that length; keeps a vertex from
@@ -86,6 +95,8 @@
 //   vertex: a reference of any orientation works.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_constraint.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Feature_recovery.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Reference_features.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
@@ -101,6 +112,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -140,7 +152,36 @@ struct Target_surface_parameters
   std::size_t min_feature_edges = 3;
   /// half-width, in segments, of the search for a sharp vertex's anchor on its line
   std::size_t feature_search_window = 64;
+  /// feature recovery from the reference (Feature_recovery.h): the creases
+  /// of the reference are its edges with a dihedral angle below this, in
+  /// degrees; 0 (the default): no recovery, the features are those of Ω_t.
+  /// The pipelines set it for a reference given by the user
+  double reference_feature_angle = 0.;
+  /// dangling or closed reference creases shorter than this many mean
+  /// boundary edges of the mesh are dropped (noise of a scanned surface)
+  double min_reference_feature_length = 2.;
+  /// the reference has features only when at least half of its edges
+  /// sharp at `reference_feature_angle` are still sharp at that angle minus
+  /// this many degrees (Reference_features.h; 0: not checked)
+  double reference_feature_clear_margin = 30.;
+  Feature_recovery_parameters recovery;
 };
+
+/// what feature recovery found (all zero when it did not run)
+struct Feature_recovery_summary
+{
+  bool recovered = false; ///< the reference's features replaced Ω_t's classification
+  std::size_t reference_corners = 0, corners_matched = 0;
+  std::size_t reference_curves = 0, curves_recovered = 0;
+};
+
+/// the summary in words, for a stage report
+inline std::string describe(const Feature_recovery_summary& s)
+{
+  return std::to_string(s.corners_matched) + " of " + std::to_string(s.reference_corners)
+       + " reference corners matched to boundary vertices, " + std::to_string(s.curves_recovered) + " of "
+       + std::to_string(s.reference_curves) + " reference creases followed by chains of boundary edges";
+}
 
 class Target_surface
 {
@@ -339,6 +380,12 @@ public:
     *normal = r;
   }
 
+  /// the index (in `reference_triangles()`) of the reference triangle closest to p
+  std::size_t closest_triangle(const Vec3& p) const
+  {
+    return std::size_t(tree_->closest_point_and_primitive(Point_3(p[0], p[1], p[2])).second - ref_triangles_.begin());
+  }
+
   /// Applies p ← s·p + t to the reference, Ω_t and the feature lines
   /// (used when the mesh is normalised before optimising, and back).
   void transform(double s, const Vec3& t)
@@ -381,6 +428,8 @@ public:
   }
   const std::vector<Vec3>& reference_points() const { return ref_points_; }
   const std::vector<Tri>& reference_triangles() const { return ref_tris_; }
+  /// what feature recovery found (`Target_surface_parameters::reference_feature_angle`)
+  const Feature_recovery_summary& feature_recovery_summary() const { return summary_; }
 
 private:
   // ------------------------------------------------------------ reference
@@ -483,6 +532,11 @@ private:
   /// feature lines and outward normals
   void compute_target(const std::vector<Vec3>& mesh_points)
   {
+    if(param_.reference_feature_angle > 0. && recover_target(mesh_points))
+    {
+      orient_target();
+      return;
+    }
     omega_ = smoothed_boundary(mesh_points);
     classify_target(mesh_points);
     orient_target();
@@ -618,6 +672,13 @@ private:
     for(std::size_t bi = 0; bi < nb; ++bi)
       if(degree[bi] != 0 && degree[bi] != 2)
         closest_on_reference(mesh_points[boundary_.vertices[bi]], omega_[bi]);
+    index_lines(degree);
+  }
+
+  /// the feature lines of `sharp_edge_` and each sharp vertex's place on its line
+  void index_lines(const std::vector<std::size_t>& degree)
+  {
+    const std::size_t nb = boundary_.vertices.size();
     extract_lines(sharp_edge_, degree, lines_);
     line_of_.assign(nb, npos);
     place_on_line_.assign(nb, npos);
@@ -631,6 +692,101 @@ private:
           place_on_line_[fl.vertices[i]] = i;
         }
     }
+  }
+
+  // ------------------------------------------------------------ feature recovery
+
+  /// Ω_t from the reference's own features (Feature_recovery.h): the
+  /// boundary projected onto the reference, its chains and corners put on the
+  /// reference's creases and corners, the other vertices smoothed around
+  /// them; false (nothing done) when the reference has no features
+  bool recover_target(const std::vector<Vec3>& mesh_points)
+  {
+    const std::size_t nb = boundary_.vertices.size();
+    const double h = mean_boundary_edge([&mesh_points](std::size_t v) { return mesh_points[v]; });
+    const Reference_features rf = detect_reference_features(ref_points_, ref_tris_, param_.reference_feature_angle,
+      param_.crease_continuation_turn, param_.min_reference_feature_length * h, param_.reference_feature_clear_margin);
+    if(rf.empty())
+      return false;
+    // matched on the vertices' own positions, smoothed: closest points
+    // would gather the vertices around a convex crease or corner onto it
+    const std::vector<Vec3> P_match = matching_positions(mesh_points);
+    std::vector<std::size_t> quad_patch(boundary_.quads.size());
+    parallel_for_each_index(boundary_.quads.size(), [&](std::size_t q) {
+      const auto& Q = boundary_.quads[q];
+      const Vec3 c = 0.25 * (P_match[bidx(Q[0])] + P_match[bidx(Q[1])] + P_match[bidx(Q[2])] + P_match[bidx(Q[3])]);
+      quad_patch[q] = rf.triangle_patch[closest_triangle(c)];
+    }, 256);
+    Feature_recovery recovery(boundary_, P_match, h, quad_patch, param_.recovery);
+    const Recovered_features rec = recovery.run(rf);
+    summary_ = Feature_recovery_summary{true, rec.corners, rec.corners_matched, rec.curves, rec.curves_recovered};
+    std::vector<Vec3> P(nb);
+    parallel_for_each_index(nb, [&](std::size_t bi) {
+      if(rec.placed[bi]) P[bi] = rec.position[bi];
+      else closest_on_reference(P_match[bi], P[bi]);
+    }, 256);
+    omega_ = smoothed_around_features(P, rec.placed);
+
+    sharp_edge_ = rec.sharp_edge;
+    std::vector<std::size_t> degree;
+    compute_degree(sharp_edge_, degree);
+    classes_.assign(n_vertices_, Vertex_class::interior);
+    for(std::size_t bi = 0; bi < nb; ++bi)
+      classes_[boundary_.vertices[bi]] = rec.is_corner[bi] || (degree[bi] != 0 && degree[bi] != 2) ? Vertex_class::corner
+                                       : degree[bi] == 2 ? Vertex_class::sharp
+                                                         : Vertex_class::regular;
+    index_lines(degree);
+    return true;
+  }
+
+  /// the boundary positions feature recovery matches on:
+  /// `matching_smoothing_rounds` of p ← p/2 + (mean of the neighbours)/2
+  std::vector<Vec3> matching_positions(const std::vector<Vec3>& mesh_points) const
+  {
+    const std::size_t nb = boundary_.vertices.size();
+    std::vector<Vec3> P(nb), Q(nb);
+    for(std::size_t bi = 0; bi < nb; ++bi) P[bi] = mesh_points[boundary_.vertices[bi]];
+    for(unsigned int round = 0; round < param_.recovery.matching_smoothing_rounds; ++round)
+    {
+      parallel_for_each_index(nb, [&](std::size_t bi) {
+        Vec3 sum{0., 0., 0.};
+        double n = 0.;
+        const auto er = boundary_.edges_of(bi);
+        for(const std::size_t* e = er.first; e != er.second; ++e)
+        {
+          sum = sum + P[bidx(boundary_.opposite(*e, boundary_.vertices[bi]))];
+          n += 1.;
+        }
+        Q[bi] = n > 0. ? 0.5 * P[bi] + (0.5 / n) * sum : P[bi];
+      }, 256);
+      P.swap(Q);
+    }
+    return P;
+  }
+
+  /// `smoothing_iterations` tangential Laplacian steps of the vertices not
+  /// `fixed`, each followed by a projection onto the reference (the
+  /// smoothing of Ω_t, with the recovered features held in place)
+  std::vector<Vec3> smoothed_around_features(std::vector<Vec3> P, const std::vector<unsigned char>& fixed) const
+  {
+    const std::size_t nb = P.size();
+    std::vector<Vec3> Q = P, normals;
+    std::vector<std::size_t> degree(nb, 0); // 0: tangential Laplacian; 1: stays
+    for(std::size_t bi = 0; bi < nb; ++bi) degree[bi] = fixed[bi] ? 1 : 0;
+    const std::vector<unsigned char> no_sharp_edges(boundary_.edges.size(), 0);
+    const double still = CGAL::square(param_.smoothing_convergence * mean_boundary_edge([&](std::size_t v) { return P[bidx(v)]; }));
+    for(unsigned int it = 0; it < param_.smoothing_iterations; ++it)
+    {
+      vertex_normals(P, normals);
+      parallel_for_each_index(nb, [&](std::size_t bi) {
+        Q[bi] = fixed[bi] ? P[bi] : closest_on_reference_from(smoothing_step(P, bi, no_sharp_edges, degree, normals), P[bi]);
+      }, 256);
+      bool moved = false;
+      for(std::size_t bi = 0; bi < nb && !moved; ++bi) moved = squared_norm(Q[bi] - P[bi]) > still;
+      std::swap(P, Q);
+      if(!moved) break;
+    }
+    return P;
   }
 
   /// outward normals of Ω_t (the quads are outward for positive hexes; if
@@ -945,6 +1101,7 @@ private:
   std::vector<Feature_line> lines_;
   std::vector<std::size_t> line_of_, place_on_line_;
   double mean_edge_length_ = 0.;
+  Feature_recovery_summary summary_;
 };
 
 } // namespace internal
