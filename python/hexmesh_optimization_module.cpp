@@ -253,7 +253,7 @@ py::dict quality(const py::array& points, const py::array& hexes)
 /// `parameters::default_values()`, so that they cannot drift apart.
 struct Options
 {
-  double sharp_angle, alpha, beta, xi;
+  double sharp_angle, reference_feature_angle, alpha, beta, xi;
   bool relax_surface;
   int local_iterations, number_of_iterations;
   bool barrier_fallback;
@@ -272,6 +272,7 @@ struct Options
     HMO::internal::Quality_settings q;
     HMO::internal::read_quality_parameters(CGAL::parameters::default_values(), u, q);
     sharp_angle = u.sharp_angle;
+    reference_feature_angle = u.reference_feature_angle;
     alpha = u.alpha;
     beta = u.beta;
     xi = u.xi;
@@ -298,7 +299,7 @@ const char* function_name(Function f)
 /// the keyword arguments each function accepts (besides `reference` and `progress`)
 const std::set<std::string>& accepted_options(Function f)
 {
-  static const std::set<std::string> untangle{"sharp_angle", "alpha", "beta", "xi", "relax_surface",
+  static const std::set<std::string> untangle{"sharp_angle", "reference_feature_angle", "alpha", "beta", "xi", "relax_surface",
                                               "local_iterations", "number_of_iterations", "barrier_fallback",
                                               "surface_tolerance", "method", "time_limit", "threads"};
   static const std::set<std::string> quality = [] {
@@ -349,6 +350,7 @@ Options read_options(Function f, const py::kwargs& kwargs)
       raise(PyExc_TypeError, std::string(function_name(f)) + "() got an unexpected keyword argument '" + name + "'");
     const py::handle v = item.second;
     if(name == "sharp_angle") o.sharp_angle = finite_number(name, v, 0., 180.);
+    else if(name == "reference_feature_angle") o.reference_feature_angle = finite_number(name, v, 0., 180.);
     else if(name == "crease_seed_angle") o.crease_seed_angle = finite_number(name, v, 0., 180.);
     else if(name == "alpha") o.alpha = finite_number(name, v, 0., 1e12);
     else if(name == "beta") o.beta = finite_number(name, v, 0., 1e12);
@@ -530,6 +532,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
   visitor.stop = &stop;
   namespace HP = CGAL::hex_mesh_parameters;
   const auto np = HP::sharp_angle(o.sharp_angle,
+                  HP::reference_feature_angle(o.reference_feature_angle,
                   HP::crease_seed_angle(o.crease_seed_angle,
                   HP::alpha(o.alpha,
                   HP::beta(o.beta,
@@ -546,7 +549,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                   HP::time_limit(o.time_limit,
                   HP::stop_flag(&stop,
                   CGAL::parameters::number_of_iterations(o.number_of_iterations)
-                                    .visitor(std::ref(visitor))))))))))))))))));
+                                    .visitor(std::ref(visitor)))))))))))))))))));
   HMO::Optimization_result r;
   {
     py::gil_scoped_release no_gil;
@@ -597,7 +600,8 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
         "with a positive Jacobian at the 9 samples, decided exactly) and not_certified (their indices).");
   const char* options_doc =
     "Keyword options (the named parameters of the C++ functions, same names and defaults): sharp_angle,\n"
-    "alpha, beta, xi, relax_surface, local_iterations, number_of_iterations, barrier_fallback,\n"
+    "reference_feature_angle, alpha, beta, xi, relax_surface, local_iterations, number_of_iterations,\n"
+    "barrier_fallback, "
     "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +

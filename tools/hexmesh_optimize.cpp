@@ -189,6 +189,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
     log << "\n" << (options.untangle_only ? "untangling" : "optimising") << " (" << mesh.hexahedra.size()
         << " hexahedra)\n";
   auto np = HP::sharp_angle(options.sharp_angle,
+            HP::reference_feature_angle(options.reference_feature_angle,
             HP::crease_seed_angle(options.crease_seed_angle,
             HP::relax_surface(options.relax_surface,
             HP::time_limit(time_limit,
@@ -199,7 +200,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
             HP::pull_back(options.pull_back,
             HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                             : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor))))))))))));
+            CGAL::parameters::visitor(std::ref(visitor)))))))))))));
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {

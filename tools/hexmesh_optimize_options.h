@@ -35,6 +35,7 @@ struct Hexmesh_optimize_options
   std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double crease_seed_angle = 180.; ///< --crease-seed-angle DEG
+  double reference_feature_angle = 150.; ///< --reference-feature-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
   double time_limit = 0.;         ///< --time-limit S: hard stop of the whole run; 0: none
@@ -144,6 +145,9 @@ inline const std::vector<Option_spec>& option_table()
     {"--sharp-angle", "DEG",
      "dihedral angle below which a boundary edge is a feature (default 165)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--sharp-angle", v, 0., 180., o.sharp_angle, e); }},
+    {"--reference-feature-angle", "DEG",
+     "with --reference: its edges below this dihedral angle are creases the boundary recovers (default 150; 0: off)",
+     [](O& o, const std::string& v, std::string& e) { return parse_number("--reference-feature-angle", v, 0., 180., o.reference_feature_angle, e); }},
     {"--crease-seed-angle", "DEG",
      "quality stages: a crease starts only at an edge below DEG, the edges below the sharp angle only continue it (default 180: off)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--crease-seed-angle", v, 0., 180., o.crease_seed_angle, e); }},

@@ -31,6 +31,7 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   else
     s.schedule.msj_stage_edge_angle_passes = 0;
   s.sharp_angle = u.sharp_angle;
+  s.reference_feature_angle = u.reference_feature_angle;
   s.schedule.crease_seed_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::crease_seed_angle),
                                                   s.schedule.crease_seed_angle);
   s.xi = u.xi;
@@ -194,6 +195,11 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
     \cgalParamType{`double`}
     \cgalParamDefault{165}
+  \cgalParamNEnd
+  \cgalParamNBegin{reference_feature_angle}
+    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off}
+    \cgalParamType{`double`}
+    \cgalParamDefault{150}
   \cgalParamNEnd
   \cgalParamNBegin{crease_seed_angle}
     \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. 150 takes the corners of block_in from 186 to 16; the manual's implementation notes have what it changes on the published rows and the stress sets}

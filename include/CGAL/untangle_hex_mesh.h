@@ -78,6 +78,7 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
   using parameters::choose_parameter;
   using parameters::get_parameter;
   s.sharp_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.);
+  s.reference_feature_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_feature_angle), 150.);
   s.alpha = choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.);
   s.beta = choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.);
   s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6);
@@ -150,6 +151,11 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
     \cgalParamType{`double`}
     \cgalParamDefault{165}
+  \cgalParamNEnd
+  \cgalParamNBegin{reference_feature_angle}
+    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off}
+    \cgalParamType{`double`}
+    \cgalParamDefault{150}
   \cgalParamNEnd
   \cgalParamNBegin{alpha}
     \cgalParamDescription{initial weight of the feature and corner constraints}

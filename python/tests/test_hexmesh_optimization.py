@@ -239,6 +239,8 @@ def test_options_are_checked():
         hmo.untangle(points, hexes, crease_seed_angle=150)  # a quality option too
     with pytest.raises(ValueError, match="crease_seed_angle"):
         hmo.optimize(points, hexes, crease_seed_angle=200)
+    with pytest.raises(ValueError, match="reference_feature_angle"):
+        hmo.untangle(points, hexes, reference_feature_angle=-1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'no_such_option'"):
         hmo.optimize(points, hexes, no_such_option=1)
     with pytest.raises(ValueError, match="method"):

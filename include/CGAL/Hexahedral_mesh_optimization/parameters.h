@@ -41,6 +41,7 @@ namespace hex_mesh_internal_np {
 
 enum reference_surface_t { reference_surface };
 enum sharp_angle_t { sharp_angle };
+enum reference_feature_angle_t { reference_feature_angle };
 enum crease_seed_angle_t { crease_seed_angle };
 enum alpha_t { alpha };
 enum beta_t { beta };
@@ -85,6 +86,9 @@ namespace hex_mesh_parameters {
 CGAL_HMO_ADD_PARAMETER(reference_surface)
 /// θ in degrees: boundary edges with a smaller dihedral angle are features (default 165)
 CGAL_HMO_ADD_PARAMETER(sharp_angle)
+/// with a reference surface: the dihedral angle below which its edges are
+/// creases that the mesh boundary recovers (default 150; 0: no recovery)
+CGAL_HMO_ADD_PARAMETER(reference_feature_angle)
 /// quality stages: creases start only at edges below this dihedral angle and
 /// the edges below `sharp_angle` only continue them (default 180: every edge
 /// below `sharp_angle` is a crease)

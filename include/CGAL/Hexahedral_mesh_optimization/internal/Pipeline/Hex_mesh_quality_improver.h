@@ -75,6 +75,8 @@ struct Quality_settings
   /// the MSJ aimed at; ≥ 1 means as high as the method gets it
   double target_msj = 1.;
   double sharp_angle = 165.;
+  /// as `Untangle_settings::reference_feature_angle`
+  double reference_feature_angle = 150.;
   double alpha = 1000., beta = 1000.;
   double min_alpha_beta = 500.;
   double xi = 0.6;
@@ -214,7 +216,20 @@ private:
     // untangler smoothed what needed it, and smoothing a valid boundary only
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
+    if(user_reference()) tsp.reference_feature_angle = m_s.reference_feature_angle;
     st.ts.reset(new Target_surface(st.mesh, st.topo->boundary(), m_target_points, m_target_tris, tsp));
+    if(st.ts->feature_recovery_summary().recovered)
+    {
+      Stage_report sr;
+      sr.name = "feature recovery";
+      const Quality_statistics q = quality_statistics(st.mesh);
+      sr.inverted_before = sr.inverted_after = q.inverted;
+      sr.msj_after = q.msj;
+      sr.details = describe(st.ts->feature_recovery_summary());
+      st.res.stages.push_back(sr);
+      m_visitor.stage_started(sr.name, q.inverted);
+      m_visitor.stage_finished(sr);
+    }
   }
 
   bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }

@@ -59,6 +59,9 @@ namespace internal {
 struct Untangle_settings
 {
   double sharp_angle = 165.;
+  /// with a reference surface, its creases (dihedral angle below this) are
+  /// recovered on the mesh boundary (Feature_recovery.h); 0: off
+  double reference_feature_angle = 150.;
   double alpha = 1000., beta = 1000.;
   double xi = 0.6;
   bool relax_surface = true;
@@ -240,6 +243,7 @@ public:
       std::vector<Vec3> rp;
       rp.reserve(m_s.reference_points->size());
       for(const Vec3& p : *m_s.reference_points) rp.push_back(nz.apply(p));
+      tsp.reference_feature_angle = m_s.reference_feature_angle;
       ts.reset(new Target_surface(mesh, topo.boundary(), rp, *m_s.reference_triangles, tsp));
     }
     else
@@ -247,6 +251,12 @@ public:
 
     const Optimization_schedule& sc = m_s.schedule;
     m_inverted = count_inverted(mesh); // then kept by each stage's report
+    if(ts->feature_recovery_summary().recovered)
+    {
+      Stage_report sr = begin_stage("feature recovery");
+      sr.details = describe(ts->feature_recovery_summary());
+      end_stage(sr, mesh, start, res);
+    }
     if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
       interior_stage(topo, ts->boundary(), mesh, res);
     // (what the interior stage freed needs no edge-angle stage: its set-up,
