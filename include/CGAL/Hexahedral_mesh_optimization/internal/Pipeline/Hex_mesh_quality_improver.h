@@ -369,7 +369,8 @@ private:
   /// A turn that raised the MSJ (by more than `turn_min_kept_gain`) is kept
   /// if its surface error stays within max(tolerance, the error before the
   /// turns), after a restoration if need be (the guard is then halved, not
-  /// below `min_turn_guard`); otherwise it is undone (and the guard halved;
+  /// below `min_turn_guard`; once a restoration has failed to bring a turn
+  /// within the bound, the later turns get none); otherwise it is undone (and the guard halved;
   /// below `min_turn_guard` the turns end). A turn that raised nothing is
   /// undone without a surface check. A turn kept with a gain of at least
   /// `turn_min_gain` keeps its drop; any other moves on to the next drop.
@@ -392,6 +393,9 @@ private:
     // up once (see `Asj_smoother::restart`)
     std::unique_ptr<Asj_smoother> smoother;
     Quality_statistics now = quality_statistics(st.mesh);
+    // a turn over the bound gets a surface restoration until one fails to
+    // bring a turn back within it; the later ones are undone at once
+    bool restoration_helps = true;
     for(int turn = 0; turn < sc.max_turns && !stopped(); ++turn)
     {
       const std::vector<Vec3> saved = st.mesh.points;
@@ -412,7 +416,8 @@ private:
       // are undone unchecked
       const bool worth = after > before + sc.turn_min_kept_gain;
       bool restored = false;
-      const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", true, &restored);
+      const bool kept = worth && within_bound(st, saved, saved_error, "the last ASJ + max-min turn", restoration_helps, &restored);
+      if(restored && !kept) restoration_helps = false;
       if(!kept) now = saved_quality;
       else if(restored)
       {
