@@ -984,6 +984,7 @@ void test_feature_recovery()
                                                {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}};
   // the features of the reference itself
   const HMO::Reference_features rf = HMO::detect_reference_features(box_points, box_triangles, 150., 60., 2. * h, 30.);
+  HMO_CHECK(rf.clear && rf.sharp_edges == 12 && rf.clearly_sharp_edges == 12); // the 12 creases at 90 degrees
   HMO_CHECK(rf.corners.size() == 8);
   HMO_CHECK(rf.curves.size() == 12);
   HMO_CHECK(std::set<std::size_t>(rf.triangle_patch.begin(), rf.triangle_patch.end()).size() == 6);
@@ -1043,6 +1044,15 @@ void test_feature_recovery()
               << noisy.curves.size() << " once the margin is checked" << std::endl;
     HMO_CHECK(!unchecked.empty());
     HMO_CHECK(noisy.empty());
+    HMO_CHECK(!noisy.clear && noisy.sharp_edges > 2 * noisy.clearly_sharp_edges);
+    // the target surface then keeps its own classification, and says why
+    HMO::Hex_mesh_arrays ball = cube;
+    for(std::size_t i = 0; i < b.vertices.size(); ++i) ball.points[b.vertices[i]] = points[i];
+    const HMO::Target_surface ts_ball(ball, points, triangles, param);
+    const std::string why = HMO::describe(ts_ball.feature_recovery_summary());
+    std::cout << "  feature recovery on it: " << why << std::endl;
+    HMO_CHECK(ts_ball.feature_recovery_summary().attempted && !ts_ball.feature_recovery_summary().recovered);
+    HMO_CHECK(why.find("not clear") != std::string::npos);
   }
 }
 

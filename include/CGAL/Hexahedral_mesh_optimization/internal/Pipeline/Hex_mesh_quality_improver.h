@@ -218,7 +218,7 @@ private:
     tsp.smoothing_iterations = 0;
     if(user_reference()) tsp.reference_feature_angle = m_s.reference_feature_angle;
     st.ts.reset(new Target_surface(st.mesh, st.topo->boundary(), m_target_points, m_target_tris, tsp));
-    if(st.ts->feature_recovery_summary().recovered)
+    if(st.ts->feature_recovery_summary().attempted)
     {
       Stage_report sr;
       sr.name = "feature recovery";

@@ -251,7 +251,7 @@ public:
 
     const Optimization_schedule& sc = m_s.schedule;
     m_inverted = count_inverted(mesh); // then kept by each stage's report
-    if(ts->feature_recovery_summary().recovered)
+    if(ts->feature_recovery_summary().attempted)
     {
       Stage_report sr = begin_stage("feature recovery");
       sr.details = describe(ts->feature_recovery_summary());

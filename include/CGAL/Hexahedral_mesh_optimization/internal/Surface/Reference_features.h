@@ -77,6 +77,12 @@ struct Reference_features
   /// the patch of each non-degenerate triangle of the soup (in soup order):
   /// the parts of the surface the creases bound
   std::vector<std::size_t> triangle_patch;
+  /// the reference's edges sharp at θ, and at θ − the clear margin
+  std::size_t sharp_edges = 0, clearly_sharp_edges = 0;
+  /// false: too few of its sharp edges are clearly sharp, no curve kept
+  bool clear = true;
+  /// false: the soup is not a polygon mesh, even oriented; no feature
+  bool polygon_mesh = true;
   bool empty() const { return curves.empty(); }
 };
 
@@ -252,14 +258,17 @@ inline Reference_features detect_reference_features(const std::vector<Vec3>& poi
   using namespace reference_features_detail;
   Reference_features rf;
   Mesh m;
-  if(!to_surface_mesh(points, triangles, m)) return rf;
+  rf.polygon_mesh = to_surface_mesh(points, triangles, m);
+  if(!rf.polygon_mesh) return rf;
   std::vector<unsigned char> sharp = sharp_edges(m, feature_angle);
+  const auto count = [](const std::vector<unsigned char>& f) { return std::size_t(std::count(f.begin(), f.end(), 1)); };
+  rf.sharp_edges = count(sharp);
   if(clear_margin > 0.)
   {
     // features at all only when most edges sharp at θ are sharp at θ − margin
-    const std::vector<unsigned char> clear = sharp_edges(m, feature_angle - clear_margin);
-    const auto count = [](const std::vector<unsigned char>& f) { return std::count(f.begin(), f.end(), 1); };
-    if(2 * count(clear) < count(sharp)) return rf;
+    rf.clearly_sharp_edges = count(sharp_edges(m, feature_angle - clear_margin));
+    rf.clear = 2 * rf.clearly_sharp_edges >= rf.sharp_edges;
+    if(!rf.clear) return rf;
   }
 
   std::vector<Chain> cs;

@@ -112,6 +112,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -170,14 +171,32 @@ struct Target_surface_parameters
 /// what feature recovery found (all zero when it did not run)
 struct Feature_recovery_summary
 {
+  bool attempted = false; ///< recovery was asked for (`reference_feature_angle` > 0)
   bool recovered = false; ///< the reference's features replaced Ω_t's classification
   std::size_t reference_corners = 0, corners_matched = 0;
   std::size_t reference_curves = 0, curves_recovered = 0;
+  /// the reference's edges sharp at the angle, and at it minus the clear margin
+  std::size_t sharp_edges = 0, clearly_sharp_edges = 0;
+  double angle = 0., clear_margin = 0.;
+  bool polygon_mesh = true; ///< the reference could be made a polygon mesh
 };
 
 /// the summary in words, for a stage report
 inline std::string describe(const Feature_recovery_summary& s)
 {
+  if(!s.recovered)
+  {
+    std::ostringstream d;
+    d << "not used: ";
+    if(!s.polygon_mesh) d << "the reference is not a polygon mesh (non-manifold or not orientable)";
+    else if(s.sharp_edges == 0) d << "the reference has no edge below " << s.angle << " degrees";
+    else if(s.clear_margin > 0. && 2 * s.clearly_sharp_edges < s.sharp_edges)
+      d << "the reference's creases are not clear (" << s.sharp_edges << " edges below " << s.angle << " degrees, "
+        << s.clearly_sharp_edges << " below " << s.angle - s.clear_margin << ")";
+    else d << "no crease of the reference is long enough";
+    d << "; the boundary is classified by its dihedral angles";
+    return d.str();
+  }
   return std::to_string(s.corners_matched) + " of " + std::to_string(s.reference_corners)
        + " reference corners matched to boundary vertices, " + std::to_string(s.curves_recovered) + " of "
        + std::to_string(s.reference_curves) + " reference creases followed by chains of boundary edges";
@@ -706,6 +725,13 @@ private:
     const double h = mean_boundary_edge([&mesh_points](std::size_t v) { return mesh_points[v]; });
     const Reference_features rf = detect_reference_features(ref_points_, ref_tris_, param_.reference_feature_angle,
       param_.crease_continuation_turn, param_.min_reference_feature_length * h, param_.reference_feature_clear_margin);
+    summary_ = Feature_recovery_summary();
+    summary_.attempted = true;
+    summary_.sharp_edges = rf.sharp_edges;
+    summary_.clearly_sharp_edges = rf.clearly_sharp_edges;
+    summary_.angle = param_.reference_feature_angle;
+    summary_.clear_margin = param_.reference_feature_clear_margin;
+    summary_.polygon_mesh = rf.polygon_mesh;
     if(rf.empty())
       return false;
     // matched on the vertices' own positions, smoothed: closest points
@@ -719,7 +745,11 @@ private:
     }, 256);
     Feature_recovery recovery(boundary_, P_match, h, quad_patch, param_.recovery);
     const Recovered_features rec = recovery.run(rf);
-    summary_ = Feature_recovery_summary{true, rec.corners, rec.corners_matched, rec.curves, rec.curves_recovered};
+    summary_.recovered = true;
+    summary_.reference_corners = rec.corners;
+    summary_.corners_matched = rec.corners_matched;
+    summary_.reference_curves = rec.curves;
+    summary_.curves_recovered = rec.curves_recovered;
     std::vector<Vec3> P(nb);
     parallel_for_each_index(nb, [&](std::size_t bi) {
       if(rec.placed[bi]) P[bi] = rec.position[bi];
