@@ -219,17 +219,7 @@ private:
     if(user_reference()) tsp.reference_feature_angle = m_s.reference_feature_angle;
     st.ts.reset(new Target_surface(st.mesh, st.topo->boundary(), m_target_points, m_target_tris, tsp));
     if(st.ts->feature_recovery_summary().attempted)
-    {
-      Stage_report sr;
-      sr.name = "feature recovery";
-      const Quality_statistics q = quality_statistics(st.mesh);
-      sr.inverted_before = sr.inverted_after = q.inverted;
-      sr.msj_after = q.msj;
-      sr.details = describe(st.ts->feature_recovery_summary());
-      st.res.stages.push_back(sr);
-      m_visitor.stage_started(sr.name, q.inverted);
-      m_visitor.stage_finished(sr);
-    }
+      report_event(st, "feature recovery", describe(st.ts->feature_recovery_summary()), true);
   }
 
   bool user_reference() const { return m_s.reference_points && m_s.reference_triangles; }
@@ -501,14 +491,21 @@ private:
   /// a "check" stage: `what` was undone, and why
   void report_check(Run_state& st, const std::string& what, const std::string& why)
   {
+    report_event(st, "check", what + " undone: " + why, false);
+  }
+
+  /// a stage that moved nothing, reported with the mesh's quality as it is
+  /// (the visitor is told the inverted count at its start if `with_count`)
+  void report_event(Run_state& st, const std::string& name, const std::string& details, bool with_count)
+  {
     Stage_report sr;
-    sr.name = "check";
+    sr.name = name;
     const Quality_statistics q = quality_statistics(st.mesh);
     sr.inverted_before = sr.inverted_after = q.inverted;
     sr.msj_after = q.msj;
-    sr.details = what + " undone: " + why;
+    sr.details = details;
     st.res.stages.push_back(sr);
-    m_visitor.stage_started(sr.name, 0);
+    m_visitor.stage_started(sr.name, with_count ? q.inverted : 0);
     m_visitor.stage_finished(sr);
   }
 

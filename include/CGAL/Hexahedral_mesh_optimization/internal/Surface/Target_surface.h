@@ -678,9 +678,7 @@ private:
     detect_features(omega_, param_.feature_angle, sharp_edge_, degree, nullptr, param_.feature_seed_angle);
     classes_.assign(n_vertices_, Vertex_class::interior);
     for(std::size_t bi = 0; bi < nb; ++bi)
-      classes_[boundary_.vertices[bi]] = degree[bi] == 0 ? Vertex_class::regular
-                                       : degree[bi] == 2 ? Vertex_class::sharp
-                                                         : Vertex_class::corner;
+      classes_[boundary_.vertices[bi]] = class_of_sharp_degree(degree[bi]);
     // corners: back at the input's own position (projected on the
     // reference). The smoothing keeps only the corners of the 135° set in
     // place; a vertex that is a corner only at θ (a tip, the end of a
@@ -692,6 +690,13 @@ private:
       if(degree[bi] != 0 && degree[bi] != 2)
         closest_on_reference(mesh_points[boundary_.vertices[bi]], omega_[bi]);
     index_lines(degree);
+  }
+
+  /// the class of a boundary vertex with `degree` sharp edges: 0 regular,
+  /// 2 sharp, 1 (the end of a line) or more than 2 corner
+  static Vertex_class class_of_sharp_degree(std::size_t degree)
+  {
+    return degree == 0 ? Vertex_class::regular : degree == 2 ? Vertex_class::sharp : Vertex_class::corner;
   }
 
   /// the feature lines of `sharp_edge_` and each sharp vertex's place on its line
@@ -762,9 +767,7 @@ private:
     compute_degree(sharp_edge_, degree);
     classes_.assign(n_vertices_, Vertex_class::interior);
     for(std::size_t bi = 0; bi < nb; ++bi)
-      classes_[boundary_.vertices[bi]] = rec.is_corner[bi] || (degree[bi] != 0 && degree[bi] != 2) ? Vertex_class::corner
-                                       : degree[bi] == 2 ? Vertex_class::sharp
-                                                         : Vertex_class::regular;
+      classes_[boundary_.vertices[bi]] = rec.is_corner[bi] ? Vertex_class::corner : class_of_sharp_degree(degree[bi]);
     index_lines(degree);
     return true;
   }
