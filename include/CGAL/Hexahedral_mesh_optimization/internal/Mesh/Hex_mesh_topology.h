@@ -123,6 +123,9 @@ public:
   }
 
 private:
+  // 32-bit where there is one entry per edge or per hex edge (see `Corner`)
+  typedef std::uint32_t Index;
+
   /// The incidence of vertices in `cells` (arrays of vertex indices), in
   /// compressed rows: vertex v's entries are list[off[v] .. off[v + 1]),
   /// entry(cell, local index) each, in cell order.
@@ -156,43 +159,65 @@ private:
   // threads.
   void build_edges()
   {
-    const std::size_t block = 4096;
-    auto for_each_vertex_block = [&](auto f) {
-      parallel_for_each_index((m_nv + block - 1) / block, [&](std::size_t b) {
-        std::vector<Index> scratch;
-        for(std::size_t v = b * block; v < (std::min)(m_nv, (b + 1) * block); ++v) f(v, scratch);
-      });
-    };
-    // the neighbours above v, sorted, in `scratch`
-    auto upper_of = [&](std::size_t v, std::vector<Index>& scratch) {
-      scratch.clear();
-      for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
-        for(int k = 0; k < 3; ++k)
-        {
-          const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
-          if(w > v) scratch.push_back(Index(w));
-        }
-      std::sort(scratch.begin(), scratch.end());
-      scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-    };
+    build_upper_neighbours();
+    const std::vector<std::atomic<Index> > first = first_meetings();
+    number_edges(first);
+    count_edge_valences();
+  }
+
+  static constexpr std::size_t edge_pass_block = 4096;
+
+  // f(v, scratch) for every vertex, by blocks of vertices on the threads,
+  // with one scratch vector per block
+  template <class F>
+  void for_each_vertex_block(F f) const
+  {
+    const std::size_t block = edge_pass_block;
+    parallel_for_each_index((m_nv + block - 1) / block, [&](std::size_t b) {
+      std::vector<Index> scratch;
+      for(std::size_t v = b * block; v < (std::min)(m_nv, (b + 1) * block); ++v) f(v, scratch);
+    });
+  }
+
+  // the neighbours above v, sorted, in `scratch`
+  void upper_neighbours(std::size_t v, std::vector<Index>& scratch) const
+  {
+    scratch.clear();
+    for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
+      for(int k = 0; k < 3; ++k)
+      {
+        const std::size_t w = m_hexes[c->hex][hex_corner_edges[c->local][k]];
+        if(w > v) scratch.push_back(Index(w));
+      }
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+  }
+
+  // `m_upper_off`, `m_upper`: the places of the edges
+  void build_upper_neighbours()
+  {
     m_upper_off.assign(m_nv + 1, 0);
     for_each_vertex_block([&](std::size_t v, std::vector<Index>& scratch) {
-      upper_of(v, scratch);
+      upper_neighbours(v, scratch);
       m_upper_off[v + 1] = scratch.size();
     });
     for(std::size_t v = 0; v < m_nv; ++v) m_upper_off[v + 1] += m_upper_off[v];
-    const std::size_t ne = m_upper_off[m_nv];
-    m_upper.resize(ne);
+    m_upper.resize(m_upper_off[m_nv]);
     for_each_vertex_block([&](std::size_t v, std::vector<Index>& scratch) {
-      upper_of(v, scratch);
+      upper_neighbours(v, scratch);
       std::copy(scratch.begin(), scratch.end(), m_upper.begin() + std::ptrdiff_t(m_upper_off[v]));
     });
+  }
 
-    // the place of every hex edge, and the first meeting of every place
-    const std::size_t nh = m_hexes.size();
+  // the place of every hex edge (in `m_hex_edges` for now), and the first
+  // meeting 12 h + k of every place
+  std::vector<std::atomic<Index> > first_meetings()
+  {
+    const std::size_t ne = m_upper_off[m_nv], nh = m_hexes.size();
     m_hex_edges.resize(nh);
     std::vector<std::atomic<Index> > first(ne);
-    parallel_for_each_index(ne, [&](std::size_t p) { first[p].store(Index(-1), std::memory_order_relaxed); }, block);
+    parallel_for_each_index(ne, [&](std::size_t p) { first[p].store(Index(-1), std::memory_order_relaxed); },
+                            edge_pass_block);
     parallel_for_each_index(nh, [&](std::size_t h) {
       for(int k = 0; k < 12; ++k)
       {
@@ -202,17 +227,24 @@ private:
         Index now = first[place].load(std::memory_order_relaxed);
         while(meeting < now && !first[place].compare_exchange_weak(now, meeting, std::memory_order_relaxed)) {}
       }
-    }, block);
+    }, edge_pass_block);
+    return first;
+  }
+
+  // the edge ids (`m_edges`, `m_edge_of_sorted`), the new edges of the hexes
+  // before h first, and `m_hex_edges` turned from places into ids
+  void number_edges(const std::vector<std::atomic<Index> >& first)
+  {
+    const std::size_t ne = first.size(), nh = m_hexes.size();
     auto is_first = [&](std::size_t h, int k) {
       return first[m_hex_edges[h][k]].load(std::memory_order_relaxed) == Index(12 * h + std::size_t(k));
     };
-    // the ids: the new edges of the hexes before h come first
     std::vector<Index> new_before(nh + 1, 0);
     parallel_for_each_index(nh, [&](std::size_t h) {
       Index n = 0;
       for(int k = 0; k < 12; ++k) n += Index(is_first(h, k));
       new_before[h + 1] = n;
-    }, block);
+    }, edge_pass_block);
     for(std::size_t h = 0; h < nh; ++h) new_before[h + 1] += new_before[h];
     m_edges.resize(ne);
     m_edge_of_sorted.resize(ne);
@@ -226,12 +258,16 @@ private:
           m_edges[id] = {(std::min)(a, b), (std::max)(a, b)};
           ++id;
         }
-    }, block);
+    }, edge_pass_block);
     parallel_for_each_index(nh, [&](std::size_t h) {
       for(int k = 0; k < 12; ++k) m_hex_edges[h][k] = m_edge_of_sorted[m_hex_edges[h][k]];
-    }, block);
-    // the valences, from the lower end of each edge (one task writes them)
-    m_edge_valence.assign(ne, 0);
+    }, edge_pass_block);
+  }
+
+  // the valences, from the lower end of each edge (one task writes them)
+  void count_edge_valences()
+  {
+    m_edge_valence.assign(m_edges.size(), 0);
     for_each_vertex_block([&](std::size_t v, std::vector<Index>&) {
       for(const Corner* c = vertex_corners_begin(v); c != vertex_corners_end(v); ++c)
         for(int k = 0; k < 3; ++k)
@@ -281,8 +317,6 @@ private:
   std::vector<Corner> m_vh;
   std::vector<std::array<std::size_t, 2> > m_edges;
   std::vector<int> m_edge_valence;
-  // 32-bit where there is one entry per edge or per hex edge (see `Corner`)
-  typedef std::uint32_t Index;
   std::vector<std::size_t> m_upper_off; // see build_edges
   std::vector<Index> m_upper, m_edge_of_sorted;
   std::vector<std::array<Index, 12> > m_hex_edges;

@@ -251,6 +251,60 @@ struct Distance_witness
   }
 };
 
+namespace surface_distance_detail {
+
+/// One triangle of `one_sided_distance_above` that its own bound could not
+/// leave out: cut into 4 at its edge midpoints, down to `depth` levels, each
+/// part bounded again (`bound_of`, which also gives the part's realised
+/// squared distance, raising `lower2`); a part whose bound is within
+/// `cull2()` is left out, and the parts still uncertain at the last level
+/// go to `rest` for CGAL. `pieces2` receives the largest bound of the parts
+/// not cut further and `through` the triangles of the other surface those
+/// bounds go through; returns false if there were more of them than
+/// `Distance_witness::max_witnesses`.
+template <class BoundOf, class Cull2>
+bool subdivide_and_bound(const Soup_triangle& triangle, int depth, const BoundOf& bound_of, const Cull2& cull2,
+                         double& lower2, double& pieces2, Distance_witness& through, Triangle_surface& rest)
+{
+  bool room = true;
+  std::vector<std::pair<Soup_triangle, int> > parts(1, {triangle, 0}); // (part, its level)
+  while(!parts.empty())
+  {
+    const Soup_triangle t = parts.back().first;
+    const int level = parts.back().second;
+    parts.pop_back();
+    if(level > 0)
+    {
+      double r2 = 0.;
+      std::size_t closest = 0, across = 0;
+      const double u = bound_of(t, r2, closest, across);
+      lower2 = (std::max)(lower2, r2);
+      if(u <= cull2() || level == depth)
+      {
+        pieces2 = (std::max)(pieces2, u);
+        room = room && through.add(closest) && through.add(across);
+      }
+      if(u <= cull2()) continue;
+    }
+    if(level < depth)
+    {
+      const Soup_point a = t.vertex(0), b = t.vertex(1), c = t.vertex(2);
+      const Soup_point ab = CGAL::midpoint(a, b), bc = CGAL::midpoint(b, c), ca = CGAL::midpoint(c, a);
+      parts.push_back({Soup_triangle(a, ab, ca), level + 1});
+      parts.push_back({Soup_triangle(ab, b, bc), level + 1});
+      parts.push_back({Soup_triangle(ca, bc, c), level + 1});
+      parts.push_back({Soup_triangle(ab, bc, ca), level + 1});
+      continue;
+    }
+    Vec3 p[3];
+    for(int k = 0; k < 3; ++k) p[k] = Vec3{t.vertex(k).x(), t.vertex(k).y(), t.vertex(k).z()};
+    add_separate_triangle(rest, p[0], p[1], p[2]);
+  }
+  return room;
+}
+
+} // namespace surface_distance_detail
+
 /// max(`lower`, the one-sided Hausdorff distance from the triangles `from`
 /// to the surface `to`), to `error_bound`, for a caller that only needs the
 /// distance where it exceeds `lower` (a value it knows, or 0).
@@ -321,48 +375,13 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
     return c * c;
   };
   Triangle_surface rest;
-  std::vector<std::pair<Soup_triangle, int> > parts; // (part, its level)
   for(std::size_t i = 0; i < from.size(); ++i)
   {
     if(upper[i] <= cull2()) continue;
-    // the pieces that are not cut further: their largest bound, and the
-    // triangles of `to` it goes through (while there is room for them)
     double pieces2 = 0.;
     Distance_witness through_pieces;
-    bool room = true;
-    parts.assign(1, {from[i], 0});
-    while(!parts.empty())
-    {
-      const Soup_triangle t = parts.back().first;
-      const int level = parts.back().second;
-      parts.pop_back();
-      if(level > 0)
-      {
-        double r2 = 0.;
-        std::size_t closest = 0, across = 0;
-        const double u = bound_of(t, r2, closest, across);
-        lower2 = (std::max)(lower2, r2);
-        if(u <= cull2() || level == subdivision_depth)
-        {
-          pieces2 = (std::max)(pieces2, u);
-          room = room && through_pieces.add(closest) && through_pieces.add(across);
-        }
-        if(u <= cull2()) continue;
-      }
-      if(level < subdivision_depth)
-      {
-        const Soup_point a = t.vertex(0), b = t.vertex(1), c = t.vertex(2);
-        const Soup_point ab = CGAL::midpoint(a, b), bc = CGAL::midpoint(b, c), ca = CGAL::midpoint(c, a);
-        parts.push_back({Soup_triangle(a, ab, ca), level + 1});
-        parts.push_back({Soup_triangle(ab, b, bc), level + 1});
-        parts.push_back({Soup_triangle(ca, bc, c), level + 1});
-        parts.push_back({Soup_triangle(ab, bc, ca), level + 1});
-        continue;
-      }
-      Vec3 p[3];
-      for(int k = 0; k < 3; ++k) p[k] = Vec3{t.vertex(k).x(), t.vertex(k).y(), t.vertex(k).z()};
-      add_separate_triangle(rest, p[0], p[1], p[2]);
-    }
+    const bool room = surface_distance_detail::subdivide_and_bound(from[i], subdivision_depth, bound_of, cull2, lower2,
+                                                                   pieces2, through_pieces, rest);
     // (the pieces' bounds, through other triangles, may be the looser)
     if(witnesses && subdivision_depth > 0 && pieces2 < upper[i])
     {
@@ -559,6 +578,80 @@ struct Surface_error_bounds
   Moving_distance_bounds reference_to_boundary;
 };
 
+namespace surface_distance_detail {
+
+/// the boundary quads with a corner that moved from `before` to `after`
+inline std::vector<std::size_t> moved_quads(const Hex_mesh_boundary& b, const std::vector<Vec3>& before,
+                                            const std::vector<Vec3>& after)
+{
+  std::vector<std::size_t> moved;
+  for(std::size_t q = 0; q < b.quads.size(); ++q)
+    for(std::size_t v : b.quads[q])
+      if(before[v] != after[v]) { moved.push_back(q); break; }
+  return moved;
+}
+
+/// per reference triangle: whether it meets the box around one of the
+/// `moved` quads as they were (`before`), grown by `error_before`
+template <class Map>
+std::vector<char> reference_triangles_near(const Hex_mesh_boundary& b, const std::vector<Vec3>& before,
+                                           const std::vector<std::size_t>& moved,
+                                           const Reference_distance_index& reference, double error_before,
+                                           const Map& to_reference_frame)
+{
+  std::vector<char> near(reference.triangles().size(), 0);
+  std::vector<std::vector<Soup_triangle>::const_iterator> hits;
+  for(std::size_t q : moved)
+  {
+    CGAL::Bbox_3 box;
+    for(int i = 0; i < 4; ++i)
+    {
+      const Vec3 o = to_reference_frame(before[b.quads[q][i]]);
+      box += CGAL::Bbox_3(o[0], o[1], o[2], o[0], o[1], o[2]);
+    }
+    box = CGAL::Bbox_3(box.xmin() - error_before, box.ymin() - error_before, box.zmin() - error_before,
+                       box.xmax() + error_before, box.ymax() + error_before, box.zmax() + error_before);
+    hits.clear();
+    reference.tree().all_intersected_primitives(box, std::back_inserter(hits));
+    for(auto it : hits) near[std::size_t(it - reference.triangles().begin())] = 1;
+  }
+  return near;
+}
+
+/// the bounds of the measured quads for the next call: each to the whole
+/// reference (which does not move), through the quad itself
+template <class Corner>
+void keep_quad_bounds(const std::vector<std::size_t>& measured_quads, const std::vector<Distance_witness>& to_reference,
+                      const Corner& corner, Surface_error_bounds& bounds)
+{
+  for(std::size_t k = 0; k < measured_quads.size(); ++k)
+  {
+    const std::size_t q = measured_quads[k];
+    const double w = (std::max)(to_reference[2 * k].surface_bound, to_reference[2 * k + 1].surface_bound);
+    bounds.boundary_to_reference.set(q, w, &q, 1, corner);
+  }
+}
+
+/// the bounds of the measured reference triangles for the next call: each
+/// through the quads of the boundary triangles it went through
+template <class Corner>
+void keep_reference_bounds(const std::vector<std::size_t>& measured_reference,
+                           const std::vector<Distance_witness>& to_boundary, const Corner& corner,
+                           Surface_error_bounds& bounds)
+{
+  for(std::size_t k = 0; k < measured_reference.size(); ++k)
+  {
+    const Distance_witness& w = to_boundary[k];
+    std::size_t quads[Distance_witness::max_witnesses];
+    std::size_t n = 0;
+    for(std::size_t i = 0; i < w.count; ++i)
+      if(std::find(quads, quads + n, w.through[i] / 2) == quads + n) quads[n++] = w.through[i] / 2;
+    bounds.reference_to_boundary.set(measured_reference[k], w.bound, quads, n, corner);
+  }
+}
+
+} // namespace surface_distance_detail
+
 /// The surface error (Hausdorff distance between the boundary cut along the
 /// (0, 2) diagonals and `reference`, absolute) after the boundary vertices
 /// moved from `before` to `after`, when it was at most `error_before` at
@@ -590,10 +683,7 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
 {
   using surface_distance_detail::Soup_point;
   using surface_distance_detail::Soup_triangle;
-  std::vector<std::size_t> moved_quads;
-  for(std::size_t q = 0; q < b.quads.size(); ++q)
-    for(std::size_t v : b.quads[q])
-      if(before[v] != after[v]) { moved_quads.push_back(q); break; }
+  const std::vector<std::size_t> moved_quads = surface_distance_detail::moved_quads(b, before, after);
   if(moved_quads.empty()) return error_before;
   std::vector<Vec3> now(after.size());
   for(std::size_t v : b.vertices) now[v] = to_reference_frame(after[v]);
@@ -631,25 +721,11 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
   // reference -> boundary: the triangles not cleared by their bounds, or
   // without them, those that meet the boxes around the moved quads as they
   // were, grown by `error_before`
-  std::vector<char> near(reference_triangles.size(), use_reference_bounds ? 1 : 0);
-  if(!use_reference_bounds)
-  {
-    std::vector<std::vector<Soup_triangle>::const_iterator> hits;
-    for(std::size_t q : moved_quads)
-    {
-      CGAL::Bbox_3 box;
-      for(int i = 0; i < 4; ++i)
-      {
-        const Vec3 o = to_reference_frame(before[b.quads[q][i]]);
-        box += CGAL::Bbox_3(o[0], o[1], o[2], o[0], o[1], o[2]);
-      }
-      box = CGAL::Bbox_3(box.xmin() - error_before, box.ymin() - error_before, box.zmin() - error_before,
-                         box.xmax() + error_before, box.ymax() + error_before, box.zmax() + error_before);
-      hits.clear();
-      reference.tree().all_intersected_primitives(box, std::back_inserter(hits));
-      for(auto it : hits) near[std::size_t(it - reference_triangles.begin())] = 1;
-    }
-  }
+  const std::vector<char> near =
+    use_reference_bounds
+      ? std::vector<char>(reference_triangles.size(), 1)
+      : surface_distance_detail::reference_triangles_near(b, before, moved_quads, reference, error_before,
+                                                          to_reference_frame);
   std::vector<Soup_triangle> near_reference;
   std::vector<std::size_t> measured_reference;
   for(std::size_t t = 0; t < reference_triangles.size(); ++t)
@@ -670,26 +746,10 @@ double surface_error_after_change(const Hex_mesh_boundary& b, const std::vector<
                              reference.surface(), error_before, bound, 4, use_quad_bounds ? &to_reference : nullptr);
   const double reference_to_mesh = other.get();
 
-  // what was measured gives its bounds for the next call: a quad's is to
-  // the whole reference (which does not move), a reference triangle's
-  // through the quads of the boundary triangles it went through
-  if(use_quad_bounds)
-    for(std::size_t k = 0; k < measured_quads.size(); ++k)
-    {
-      const std::size_t q = measured_quads[k];
-      const double w = (std::max)(to_reference[2 * k].surface_bound, to_reference[2 * k + 1].surface_bound);
-      bounds.boundary_to_reference.set(q, w, &q, 1, corner);
-    }
+  // what was measured gives its bounds for the next call
+  if(use_quad_bounds) surface_distance_detail::keep_quad_bounds(measured_quads, to_reference, corner, bounds);
   if(use_reference_bounds)
-    for(std::size_t k = 0; k < measured_reference.size(); ++k)
-    {
-      const Distance_witness& w = to_boundary[k];
-      std::size_t quads[Distance_witness::max_witnesses];
-      std::size_t n = 0;
-      for(std::size_t i = 0; i < w.count; ++i)
-        if(std::find(quads, quads + n, w.through[i] / 2) == quads + n) quads[n++] = w.through[i] / 2;
-      bounds.reference_to_boundary.set(measured_reference[k], w.bound, quads, n, corner);
-    }
+    surface_distance_detail::keep_reference_bounds(measured_reference, to_boundary, corner, bounds);
   return (std::max)(mesh_to_reference, reference_to_mesh);
 }
 
