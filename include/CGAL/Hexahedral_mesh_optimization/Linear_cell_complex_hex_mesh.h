@@ -241,6 +241,123 @@ Hex_mesh_arrays lcc_to_arrays(const LCC& lcc, const GeomTraits& gt)
   return a;
 }
 
+/// One face of a hexahedron of `build_linear_cell_complex()`: its vertices
+/// sorted (to find its twin), along beta1 from its dart, its hexahedron.
+template <class LCC>
+struct Lcc_face_record
+{
+  std::array<std::size_t, 4> key;   // sorted vertex indices
+  std::array<std::size_t, 4> cycle; // vertex indices along beta1 from `dart`
+  std::size_t hex;
+  typename LCC::Dart_handle dart;
+  bool operator<(const Lcc_face_record& o) const { return key < o.key || (key == o.key && hex < o.hex); }
+};
+
+/// Makes one volume of `lcc` per hexahedron (`vertices`: the vertex
+/// attributes of the mesh's points) and the records of their faces; false,
+/// with `message`, on a vertex index out of range.
+template <class Hexahedra, class LCC>
+bool make_lcc_hexahedra(const Hexahedra& hexahedra,
+                        const std::vector<typename LCC::Vertex_attribute_handle>& vertices, LCC& lcc,
+                        std::vector<Lcc_face_record<LCC> >& faces, std::string& message)
+{
+  typedef typename LCC::Dart_handle Dart;
+  faces.reserve(6 * hexahedra.size());
+  for(std::size_t h = 0; h < hexahedra.size(); ++h)
+  {
+    const auto& m = hexahedra[h];
+    for(int i = 0; i < 8; ++i)
+      if(m[i] >= vertices.size())
+      {
+        std::ostringstream s;
+        s << "hexahedron " << h << " refers to vertex " << m[i] << " but the mesh has only "
+          << vertices.size() << " vertices";
+        message = s.str();
+        return false;
+      }
+    const Dart d = lcc.make_hexahedron(vertices[m[0]], vertices[m[1]], vertices[m[2]], vertices[m[3]],
+                                       vertices[m[7]], vertices[m[4]], vertices[m[5]], vertices[m[6]]);
+    const std::array<Dart, 6> f = lcc_hexahedron_faces(lcc, d);
+    for(int k = 0; k < 6; ++k)
+    {
+      Lcc_face_record<LCC> face;
+      Dart x = f[k];
+      for(int j = 0; j < 4; ++j, x = lcc.beta(x, 1))
+      {
+        face.cycle[j] = m[lcc_hex_faces[k][j]];
+        if(lcc.vertex_attribute(x) != vertices[face.cycle[j]])
+        {
+          message = "internal error: unexpected dart layout of make_hexahedron()";
+          return false;
+        }
+      }
+      face.key = face.cycle;
+      std::sort(face.key.begin(), face.key.end());
+      face.hex = h;
+      face.dart = f[k];
+      faces.push_back(face);
+    }
+  }
+  return true;
+}
+
+/// Sews the faces [i, j) of the sorted `faces`, which share one vertex set:
+/// nothing to do for a boundary face, the 3-sewing of a pair, and false,
+/// with `message`, for a non-manifold face, a face repeated in one
+/// hexahedron or a pair with inconsistent orientations.
+template <class LCC>
+bool sew_lcc_faces(const std::vector<Lcc_face_record<LCC> >& faces, std::size_t i, std::size_t j, LCC& lcc,
+                   std::string& message)
+{
+  typedef typename LCC::Dart_handle Dart;
+  const std::array<std::size_t, 4>& k = faces[i].key;
+  std::ostringstream s;
+  s << "face (" << k[0] << " " << k[1] << " " << k[2] << " " << k[3] << ") ";
+  if(j - i > 2)
+  {
+    s << "is shared by " << (j - i) << " hexahedra (" << faces[i].hex << ", "
+      << faces[i + 1].hex << ", " << faces[i + 2].hex << (j - i > 3 ? ", ...": "")
+      << "): the mesh is not manifold";
+    message = s.str();
+    return false;
+  }
+  if(j - i < 2)
+    return true;
+  const Lcc_face_record<LCC>& a = faces[i];
+  const Lcc_face_record<LCC>& b = faces[i + 1];
+  if(a.hex == b.hex)
+  {
+    s << "appears twice in hexahedron " << a.hex;
+    message = s.str();
+    return false;
+  }
+  // b's dart that goes from a.cycle[1] to a.cycle[0], b's cycle being the reverse of a's
+  int r = -1;
+  for(int t = 0; t < 4 && r < 0; ++t)
+    if(b.cycle[t] == a.cycle[1] && b.cycle[(t + 1) % 4] == a.cycle[0] &&
+       b.cycle[(t + 2) % 4] == a.cycle[3] && b.cycle[(t + 3) % 4] == a.cycle[2])
+      r = t;
+  if(r < 0)
+  {
+    s << "of hexahedra " << a.hex << " and " << b.hex
+      << " is not traversed in opposite directions by them (inconsistent orientation)";
+    message = s.str();
+    return false;
+  }
+  Dart e = b.dart;
+  for(int t = 0; t < r; ++t)
+    e = lcc.beta(e, 1);
+  if(!lcc.template is_sewable<3>(a.dart, e))
+  {
+    s << "of hexahedra " << a.hex << " and " << b.hex << " cannot be 3-sewn";
+    message = s.str();
+    return false;
+  }
+  // the vertex attributes are already shared: sew the darts only
+  lcc.template topo_sew<3>(a.dart, e);
+  return true;
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 
@@ -287,7 +404,6 @@ template <class Point, class LCC>
 bool build_linear_cell_complex(const Indexed_hex_mesh<Point>& mesh, LCC& lcc,
                                std::string* error_message = nullptr)
 {
-  typedef typename LCC::Dart_handle Dart;
   typedef typename LCC::Vertex_attribute_handle Vertex_handle;
   typedef typename LCC::Point LCC_point;
   static_assert(LCC::dimension == 3 && LCC::ambient_dimension == 3,
@@ -295,114 +411,35 @@ bool build_linear_cell_complex(const Indexed_hex_mesh<Point>& mesh, LCC& lcc,
   namespace HMO = Hexahedral_mesh_optimization::internal;
 
   lcc.clear();
-  auto fail = [&](const std::string& message) {
-    lcc.clear();
-    if(error_message)
-      *error_message = message;
-    return false;
-  };
-
   const typename LCC::Traits traits;
   std::vector<Vertex_handle> vertices;
   vertices.reserve(mesh.points.size());
   for(const Point& p : mesh.points)
     vertices.push_back(lcc.create_vertex_attribute(HMO::convert_point<LCC_point>(p, traits)));
 
-  // one record per face of each hexahedron, sorted by its vertex set
-  struct Face
+  std::string message;
+  std::vector<HMO::Lcc_face_record<LCC> > faces;
+  bool ok = HMO::make_lcc_hexahedra(mesh.hexahedra, vertices, lcc, faces, message);
+  if(ok)
   {
-    std::array<std::size_t, 4> key; // sorted vertex indices
-    std::array<std::size_t, 4> cycle; // vertex indices along beta1 from `dart`
-    std::size_t hex;
-    Dart dart;
-    bool operator<(const Face& o) const { return key < o.key || (key == o.key && hex < o.hex); }
-  };
-  std::vector<Face> faces;
-  faces.reserve(6 * mesh.hexahedra.size());
-
-  for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-  {
-    const auto& m = mesh.hexahedra[h];
-    for(int i = 0; i < 8; ++i)
-      if(m[i] >= vertices.size())
-      {
-        std::ostringstream s;
-        s << "hexahedron " << h << " refers to vertex " << m[i] << " but the mesh has only "
-          << vertices.size() << " vertices";
-        return fail(s.str());
-      }
-    const Dart d = lcc.make_hexahedron(vertices[m[0]], vertices[m[1]], vertices[m[2]], vertices[m[3]],
-                                       vertices[m[7]], vertices[m[4]], vertices[m[5]], vertices[m[6]]);
-    const std::array<Dart, 6> f = HMO::lcc_hexahedron_faces(lcc, d);
-    for(int k = 0; k < 6; ++k)
+    // the faces with the same vertex set are consecutive: sew each pair
+    std::sort(faces.begin(), faces.end());
+    for(std::size_t i = 0; i < faces.size() && ok;)
     {
-      Face face;
-      Dart x = f[k];
-      for(int j = 0; j < 4; ++j, x = lcc.beta(x, 1))
-      {
-        face.cycle[j] = m[HMO::lcc_hex_faces[k][j]];
-        if(lcc.vertex_attribute(x) != vertices[face.cycle[j]])
-          return fail("internal error: unexpected dart layout of make_hexahedron()");
-      }
-      face.key = face.cycle;
-      std::sort(face.key.begin(), face.key.end());
-      face.hex = h;
-      face.dart = f[k];
-      faces.push_back(face);
+      std::size_t j = i + 1;
+      while(j < faces.size() && faces[j].key == faces[i].key)
+        ++j;
+      ok = HMO::sew_lcc_faces(faces, i, j, lcc, message);
+      i = j;
     }
   }
-
-  std::sort(faces.begin(), faces.end());
-  for(std::size_t i = 0; i < faces.size();)
+  if(!ok)
   {
-    std::size_t j = i + 1;
-    while(j < faces.size() && faces[j].key == faces[i].key)
-      ++j;
-    const std::array<std::size_t, 4>& k = faces[i].key;
-    std::ostringstream s;
-    s << "face (" << k[0] << " " << k[1] << " " << k[2] << " " << k[3] << ") ";
-    if(j - i > 2)
-    {
-      s << "is shared by " << (j - i) << " hexahedra (" << faces[i].hex << ", "
-        << faces[i + 1].hex << ", " << faces[i + 2].hex << (j - i > 3 ? ", ...": "")
-        << "): the mesh is not manifold";
-      return fail(s.str());
-    }
-    if(j - i == 2)
-    {
-      const Face& a = faces[i];
-      const Face& b = faces[i + 1];
-      if(a.hex == b.hex)
-      {
-        s << "appears twice in hexahedron " << a.hex;
-        return fail(s.str());
-      }
-      // b's dart that goes from a.cycle[1] to a.cycle[0], b's cycle being the reverse of a's
-      int r = -1;
-      for(int t = 0; t < 4 && r < 0; ++t)
-        if(b.cycle[t] == a.cycle[1] && b.cycle[(t + 1) % 4] == a.cycle[0] &&
-           b.cycle[(t + 2) % 4] == a.cycle[3] && b.cycle[(t + 3) % 4] == a.cycle[2])
-          r = t;
-      if(r < 0)
-      {
-        s << "of hexahedra " << a.hex << " and " << b.hex
-          << " is not traversed in opposite directions by them (inconsistent orientation)";
-        return fail(s.str());
-      }
-      Dart e = b.dart;
-      for(int t = 0; t < r; ++t)
-        e = lcc.beta(e, 1);
-      if(!lcc.template is_sewable<3>(a.dart, e))
-      {
-        s << "of hexahedra " << a.hex << " and " << b.hex << " cannot be 3-sewn";
-        return fail(s.str());
-      }
-      // the vertex attributes are already shared: sew the darts only
-      lcc.template topo_sew<3>(a.dart, e);
-    }
-    i = j;
+    lcc.clear();
+    if(error_message)
+      *error_message = message;
   }
-  return true;
+  return ok;
 }
 
 /*!
