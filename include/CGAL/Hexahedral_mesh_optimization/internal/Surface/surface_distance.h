@@ -261,13 +261,16 @@ namespace surface_distance_detail {
 /// go to `rest` for CGAL. `pieces2` receives the largest bound of the parts
 /// not cut further and `through` the triangles of the other surface those
 /// bounds go through; returns false if there were more of them than
-/// `Distance_witness::max_witnesses`.
+/// `Distance_witness::max_witnesses`. `parts` is scratch (the parts still
+/// to look at, with their levels), kept by the caller from one triangle to
+/// the next.
 template <class BoundOf, class Cull2>
 bool subdivide_and_bound(const Soup_triangle& triangle, int depth, const BoundOf& bound_of, const Cull2& cull2,
-                         double& lower2, double& pieces2, Distance_witness& through, Triangle_surface& rest)
+                         double& lower2, double& pieces2, Distance_witness& through, Triangle_surface& rest,
+                         std::vector<std::pair<Soup_triangle, int> >& parts)
 {
   bool room = true;
-  std::vector<std::pair<Soup_triangle, int> > parts(1, {triangle, 0}); // (part, its level)
+  parts.assign(1, {triangle, 0});
   while(!parts.empty())
   {
     const Soup_triangle t = parts.back().first;
@@ -375,13 +378,14 @@ inline double one_sided_distance_above(const std::vector<surface_distance_detail
     return c * c;
   };
   Triangle_surface rest;
+  std::vector<std::pair<Soup_triangle, int> > parts; // scratch of `subdivide_and_bound`
   for(std::size_t i = 0; i < from.size(); ++i)
   {
     if(upper[i] <= cull2()) continue;
     double pieces2 = 0.;
     Distance_witness through_pieces;
     const bool room = surface_distance_detail::subdivide_and_bound(from[i], subdivision_depth, bound_of, cull2, lower2,
-                                                                   pieces2, through_pieces, rest);
+                                                                   pieces2, through_pieces, rest, parts);
     // (the pieces' bounds, through other triangles, may be the looser)
     if(witnesses && subdivision_depth > 0 && pieces2 < upper[i])
     {
