@@ -257,7 +257,7 @@ struct Options
   bool relax_surface;
   int local_iterations, number_of_iterations;
   bool barrier_fallback;
-  double target_msj, surface_tolerance, crease_seed_angle;
+  double target_msj, surface_tolerance, crease_seed_angle, turn_focus_band;
   bool pull_back, asj_smoothing, edge_angle_stages;
   HMO::Method method = HMO::Method::package;
   double time_limit = std::numeric_limits<double>::infinity();
@@ -286,6 +286,7 @@ struct Options
     asj_smoothing = q.asj_smoothing;
     edge_angle_stages = q.schedule.msj_stage_edge_angle_passes > 0;
     crease_seed_angle = q.schedule.crease_seed_angle;
+    turn_focus_band = q.schedule.turn_focus_band;
   }
 };
 
@@ -304,7 +305,7 @@ const std::set<std::string>& accepted_options(Function f)
                                               "surface_tolerance", "method", "time_limit", "threads"};
   static const std::set<std::string> quality = [] {
     std::set<std::string> s = untangle;
-    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "crease_seed_angle"});
+    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "crease_seed_angle", "turn_focus_band"});
     return s;
   }();
   return f == Function::untangle ? untangle : quality;
@@ -352,6 +353,11 @@ Options read_options(Function f, const py::kwargs& kwargs)
     if(name == "sharp_angle") o.sharp_angle = finite_number(name, v, 0., 180.);
     else if(name == "reference_feature_angle") o.reference_feature_angle = finite_number(name, v, 0., 180.);
     else if(name == "crease_seed_angle") o.crease_seed_angle = finite_number(name, v, 0., 180.);
+    else if(name == "turn_focus_band")
+    {
+      o.turn_focus_band = finite_number(name, v, 0., 1.);
+      if(!(o.turn_focus_band > 0.)) raise(PyExc_ValueError, name + ": " + std::string(py::repr(v)) + " is outside (0, 1]");
+    }
     else if(name == "alpha") o.alpha = finite_number(name, v, 0., 1e12);
     else if(name == "beta") o.beta = finite_number(name, v, 0., 1e12);
     else if(name == "xi") o.xi = finite_number(name, v, 0., 10.);
@@ -534,6 +540,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
   const auto np = HP::sharp_angle(o.sharp_angle,
                   HP::reference_feature_angle(o.reference_feature_angle,
                   HP::crease_seed_angle(o.crease_seed_angle,
+                  HP::turn_focus_band(o.turn_focus_band,
                   HP::alpha(o.alpha,
                   HP::beta(o.beta,
                   HP::xi(o.xi,
@@ -549,7 +556,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                   HP::time_limit(o.time_limit,
                   HP::stop_flag(&stop,
                   CGAL::parameters::number_of_iterations(o.number_of_iterations)
-                                    .visitor(std::ref(visitor)))))))))))))))))));
+                                    .visitor(std::ref(visitor))))))))))))))))))));
   HMO::Optimization_result r;
   {
     py::gil_scoped_release no_gil;
@@ -605,7 +612,8 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +
-    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, crease_seed_angle.\n";
+    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, crease_seed_angle,\n"
+    "turn_focus_band.\n";
   const std::string common =
     "reference: None (the input boundary), a path to a surface (OBJ, OFF, STL, PLY) or a pair\n"
     "(vertices (N, 3), faces (F, 3 or 4)). progress: None or a callable (stage, value), called with the\n"

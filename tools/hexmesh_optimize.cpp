@@ -191,6 +191,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
   auto np = HP::sharp_angle(options.sharp_angle,
             HP::reference_feature_angle(options.reference_feature_angle,
             HP::crease_seed_angle(options.crease_seed_angle,
+            HP::turn_focus_band(options.turn_focus_band,
             HP::relax_surface(options.relax_surface,
             HP::time_limit(time_limit,
             HP::stop_flag(&stop_requested,
@@ -200,7 +201,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
             HP::pull_back(options.pull_back,
             HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                             : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor)))))))))))));
+            CGAL::parameters::visitor(std::ref(visitor))))))))))))));
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {

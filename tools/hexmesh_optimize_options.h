@@ -35,6 +35,7 @@ struct Hexmesh_optimize_options
   std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double crease_seed_angle = 180.; ///< --crease-seed-angle DEG
+  double turn_focus_band = 0.15;   ///< --turn-focus-band X
   double reference_feature_angle = 150.; ///< --reference-feature-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
@@ -151,6 +152,14 @@ inline const std::vector<Option_spec>& option_table()
     {"--crease-seed-angle", "DEG",
      "quality stages: a crease starts only at an edge below DEG, the edges below the sharp angle only continue it (default 180: off)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--crease-seed-angle", v, 0., 180., o.crease_seed_angle, e); }},
+    {"--turn-focus-band", "X",
+     "quality stages: the turns' ASJ pass reshapes the elements below MSJ + X (default 0.15; 0.2: higher MSJ, more time)",
+     [](O& o, const std::string& v, std::string& e) {
+       if(!parse_number("--turn-focus-band", v, 0., 1., o.turn_focus_band, e)) return false;
+       if(o.turn_focus_band > 0.) return true;
+       e = "option --turn-focus-band: " + v + " is outside (0, 1]";
+       return false;
+     }},
     {"--surface-tolerance", "X",
      "largest surface error the quality stages may cause, relative to the bounding-box diagonal (default 0.005)",
      [](O& o, const std::string& v, std::string& e) {

@@ -239,6 +239,12 @@ def test_options_are_checked():
         hmo.untangle(points, hexes, crease_seed_angle=150)  # a quality option too
     with pytest.raises(ValueError, match="crease_seed_angle"):
         hmo.optimize(points, hexes, crease_seed_angle=200)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'turn_focus_band'"):
+        hmo.untangle(points, hexes, turn_focus_band=0.2)  # a quality option
+    with pytest.raises(ValueError, match="turn_focus_band"):
+        hmo.optimize(points, hexes, turn_focus_band=0)
+    with pytest.raises(ValueError, match="turn_focus_band"):
+        hmo.improve_quality(points, hexes, turn_focus_band=1.5)
     with pytest.raises(ValueError, match="reference_feature_angle"):
         hmo.untangle(points, hexes, reference_feature_angle=-1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'no_such_option'"):

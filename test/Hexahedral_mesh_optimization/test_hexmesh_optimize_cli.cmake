@@ -53,6 +53,11 @@ check("a crease seed angle above 180 exits 2 (got ${badseed_rc})" badseed_rc EQU
 check("and names the option: ${badseed_err}" badseed_err MATCHES "--crease-seed-angle")
 check("nothing written" NOT EXISTS ${WORK}/seed.mesh)
 
+run(badband ${bunny} ${WORK}/band.mesh --turn-focus-band 0)
+check("a turn focus band of 0 exits 2 (got ${badband_rc})" badband_rc EQUAL 2)
+check("and names the option: ${badband_err}" badband_err MATCHES "--turn-focus-band: 0 is outside \\(0, 1\\]")
+check("nothing written" NOT EXISTS ${WORK}/band.mesh)
+
 run(three a.mesh b.mesh c.mesh)
 check("three files exit 2 (got ${three_rc})" three_rc EQUAL 2)
 

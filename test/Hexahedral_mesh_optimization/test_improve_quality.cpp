@@ -20,6 +20,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_restoration.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <array>
 #include <algorithm>
 #include <map>
@@ -151,6 +152,43 @@ static void test_stage_schedule()
   const HMO::Optimization_result ra = CGAL::improve_hex_mesh_quality(a, HP::target_msj(0.3));
   HMO_CHECK(ra.msj_after >= 0.3);
   HMO_CHECK(ra.asj_after >= rt.asj_after - 1e-12);
+}
+
+static void test_turn_focus_band()
+{
+  // the named parameter reaches the turns: a wider band reshapes more of the
+  // mesh, so the result differs; both keep the guarantees. Out of (0, 1] it
+  // is refused before anything moves. A sheared wedge, so that the MSJ stays
+  // far below most elements (on a shell every element ends above 0.99, all
+  // within any band of the MSJ, and both bands give the same mesh).
+  const int n = 5;
+  Mesh input;
+  for(int k = 0; k <= n; ++k)
+    for(int j = 0; j <= n; ++j)
+      for(int i = 0; i <= n; ++i)
+      {
+        const double z = k * (1. - 0.8 * i / n) + 0.8 * i;
+        input.points.emplace_back(i + 0.5 * z, j, z);
+      }
+  input.hexahedra = hmo_test::structured_hexes(n, n, n);
+  perturb_interior(input, n, 0.1, 3);
+  Mesh narrow = input, wide = input;
+  const HMO::Optimization_result rn = CGAL::improve_hex_mesh_quality(narrow, HP::turn_focus_band(0.05));
+  const HMO::Optimization_result rw = CGAL::improve_hex_mesh_quality(wide, HP::turn_focus_band(0.6));
+  HMO_CHECK(rn.inverted_after == 0 && rw.inverted_after == 0);
+  HMO_CHECK(rn.msj_after > rn.msj_before && rw.msj_after > rw.msj_before);
+  HMO_CHECK_CLOSE(rn.msj_after, recount_msj(narrow), 1e-12);
+  HMO_CHECK_CLOSE(rw.msj_after, recount_msj(wide), 1e-12);
+  HMO_CHECK(narrow.points != wide.points);
+  for(const double bad : {0., -0.1, 1.5, std::nan("")})
+  {
+    Mesh b = input;
+    bool thrown = false;
+    try { CGAL::improve_hex_mesh_quality(b, HP::turn_focus_band(bad)); }
+    catch(const std::invalid_argument& e) { thrown = std::string(e.what()).find("turn_focus_band") != std::string::npos; }
+    HMO_CHECK(thrown);
+    HMO_CHECK(b.points == input.points);
+  }
 }
 
 static void test_never_worse()
@@ -429,6 +467,7 @@ int main(int, char** argv)
   test_boundary_restoration();
   test_reference_fit();
   test_stage_schedule();
+  test_turn_focus_band();
   test_never_worse();
   test_pipeline_on_tangled_mesh();
   test_paper_method();

@@ -43,6 +43,7 @@ enum reference_surface_t { reference_surface };
 enum sharp_angle_t { sharp_angle };
 enum reference_feature_angle_t { reference_feature_angle };
 enum crease_seed_angle_t { crease_seed_angle };
+enum turn_focus_band_t { turn_focus_band };
 enum alpha_t { alpha };
 enum beta_t { beta };
 enum xi_t { xi };
@@ -93,6 +94,10 @@ CGAL_HMO_ADD_PARAMETER(reference_feature_angle)
 /// the edges below `sharp_angle` only continue them (default 180: every edge
 /// below `sharp_angle` is a crease)
 CGAL_HMO_ADD_PARAMETER(crease_seed_angle)
+/// quality stages: the turns' ASJ pass reshapes the neighbourhood of the
+/// elements below MSJ + this band (default 0.15; 0.2 reaches a higher MSJ
+/// for more time)
+CGAL_HMO_ADD_PARAMETER(turn_focus_band)
 /// weight of the feature-line and corner constraints of Eq. 6 (default 1000)
 CGAL_HMO_ADD_PARAMETER(alpha)
 /// weight of the tangent-plane constraint of Eq. 6 (default 1000)
