@@ -573,6 +573,23 @@ static Row_run run_row(const std::string& dir, const std::string& name, bool str
   return run;
 }
 
+/// The paper-method column of a row: `Method::paper` on the same input with
+/// the same tolerance, under `threads`; MSJ / ASJ / surface error / seconds
+/// read -> write, and the elements it left inverted
+static std::string paper_method_figures(const std::string& dir, const std::string& name, bool stress,
+                                        bool interior_only, const HMO::internal::Triangle_surface* obj,
+                                        double tolerance, int threads)
+{
+  const Row_run p = run_row(dir, name, stress, interior_only, obj, tolerance, false, threads, false, true);
+  if(!p.error.empty()) return p.error;
+  char b[128];
+  std::snprintf(b, sizeof b, "%.3f / %.3f / %.4f / %.2f s", p.result.msj_after, p.result.asj_after,
+                p.result.surface_error, p.seconds);
+  std::string figures = b;
+  if(p.result.inverted_after > 0) figures += ", " + std::to_string(p.result.inverted_after) + " inverted";
+  return figures;
+}
+
 static int benchmark_rows(const std::string& dir, bool untangle_only, const std::string& only,
                           const std::vector<int>& thread_runs, bool paper_column)
 {
@@ -681,25 +698,13 @@ static int benchmark_rows(const std::string& dir, bool untangle_only, const std:
                   name.c_str(), stress ? (interior_only ? " (interior perturbed)" : " (all vertices perturbed)") : (with_obj ? " (reference .obj)" : ""), mesh.hexahedra.size(), r.inverted_before,
                   r.inverted_after, r.msj_after, r.asj_after, r.surface_error, sd.metro_relative(), times.c_str(),
                   hash.c_str(), stages.c_str());
-    // the paper's method (`Method::paper`) on the rows with the paper's own
-    // figures, under the last thread setting, the same tolerance
-    std::string paper_figures = "–";
-    if(paper_column && !untangle_only && it != published.end() && !it->second.row[7].empty())
-    {
-      const Row_run p = run_row(dir, name, stress, interior_only, with_obj ? &bunny_obj : nullptr, tolerance,
-                                false, thread_runs.back(), false, true);
-      if(!p.error.empty())
-        paper_figures = p.error;
-      else
-      {
-        char pb[128];
-        std::snprintf(pb, sizeof pb, "%.3f / %.3f / %.4f / %.2f s", p.result.msj_after, p.result.asj_after,
-                      p.result.surface_error, p.seconds);
-        paper_figures = pb;
-        if(p.result.inverted_after > 0) paper_figures += ", " + std::to_string(p.result.inverted_after) + " inverted";
-      }
-    }
-    std::cout << line << ' ' << paper_figures << " | "
+    // the paper's method on the rows with the paper's own figures
+    const bool paper_row = paper_column && !untangle_only && it != published.end() && !it->second.row[7].empty();
+    std::cout << line << ' '
+              << (paper_row ? paper_method_figures(dir, name, stress, interior_only, with_obj ? &bunny_obj : nullptr,
+                                                   tolerance, thread_runs.back())
+                            : "–")
+              << " | "
               << (it != published.end() ? fig(it->second.row[4], it->second.row[5], it->second.row[6]) : "–") << " | "
               << (it != published.end() ? fig(it->second.row[7], it->second.row[8], it->second.row[9]) : "–") << " |"
               << std::endl;
