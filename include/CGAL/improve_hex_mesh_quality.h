@@ -9,9 +9,6 @@
 #include <CGAL/untangle_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_quality_improver.h>
 
-#include <stdexcept>
-#include <string>
-
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
@@ -23,8 +20,10 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  s.target_msj = choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), 1.);
-  s.surface_tolerance = choose_parameter(get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005);
+  s.target_msj = checked_parameter("target_msj", choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), 1.),
+                                   -1., 1.);
+  s.surface_tolerance = checked_parameter(
+    "surface_tolerance", choose_parameter(get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
   s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
   s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
   s.schedule = u.schedule; // the method's schedule (`read_untangle_parameters()`)
@@ -37,11 +36,10 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.reference_feature_angle = u.reference_feature_angle;
   s.schedule.crease_seed_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::crease_seed_angle),
                                                   s.schedule.crease_seed_angle);
-  s.schedule.turn_focus_band = choose_parameter(get_parameter(np, hex_mesh_internal_np::turn_focus_band),
-                                                s.schedule.turn_focus_band);
-  if(!(s.schedule.turn_focus_band > 0. && s.schedule.turn_focus_band <= 1.))
-    throw std::invalid_argument("turn_focus_band must be in (0, 1], got " +
-                                std::to_string(s.schedule.turn_focus_band));
+  s.schedule.turn_focus_band = checked_parameter(
+    "turn_focus_band",
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::turn_focus_band), s.schedule.turn_focus_band), 0., 1.,
+    true);
   s.xi = u.xi;
   s.local_iterations = u.local_iterations;
   s.alpha = (std::max)(u.alpha, 500.);
@@ -185,12 +183,12 @@ input: when nothing better is found the input is returned as it was.
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{target_msj}
-    \cgalParamDescription{the MSJ to reach; the stages stop there}
+    \cgalParamDescription{the MSJ to reach, in [-1, 1] (`std::invalid_argument` otherwise); the stages stop there}
     \cgalParamType{`double`}
     \cgalParamDefault{1 (as high as the method gets it)}
   \cgalParamNEnd
   \cgalParamNBegin{surface_tolerance}
-    \cgalParamDescription{largest surface error, relative to the reference's bounding-box diagonal, that the boundary moves of the quality stages may cause}
+    \cgalParamDescription{largest surface error, relative to the reference's bounding-box diagonal, that the boundary moves of the quality stages may cause; in [0, 1] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.005}
   \cgalParamNEnd

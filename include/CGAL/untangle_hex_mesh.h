@@ -21,11 +21,25 @@
 
 #include <atomic>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
+
+/// `value` of the named parameter `name` when it lies in [min, max] (in
+/// (min, max] with `min_excluded`); `std::invalid_argument` saying so
+/// otherwise, NaN included, before anything moves
+inline double checked_parameter(const char* name, double value, double min, double max, bool min_excluded = false)
+{
+  if(value >= min && value <= max && !(min_excluded && value == min)) return value;
+  std::ostringstream message;
+  message << name << " must be in " << (min_excluded ? "(" : "[") << min << ", " << max << "], got " << value;
+  throw std::invalid_argument(message.str());
+}
 
 struct No_reference_surface {};
 
@@ -143,7 +157,7 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDefault{the boundary of the input mesh}
   \cgalParamNEnd
   \cgalParamNBegin{surface_tolerance}
-    \cgalParamDescription{surface error, relative to the reference's bounding-box diagonal, beyond which a reference the boundary starts from gets a warning}
+    \cgalParamDescription{surface error, relative to the reference's bounding-box diagonal, beyond which a reference the boundary starts from gets a warning; in [0, 1] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.005}
   \cgalParamNEnd
@@ -249,7 +263,9 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   const std::string warning = HMO::internal::require_reference_fit(
     arrays, s.reference_points, s.reference_triangles,
-    choose_parameter(get_parameter(np, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005));
+    HMO::internal::checked_parameter(
+      "surface_tolerance", choose_parameter(get_parameter(np, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005),
+      0., 1.));
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);

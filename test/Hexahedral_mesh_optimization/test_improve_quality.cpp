@@ -189,6 +189,22 @@ static void test_turn_focus_band()
     HMO_CHECK(thrown);
     HMO_CHECK(b.points == input.points);
   }
+  // the other numbers the library takes are checked alike (NaN included)
+  const auto refused = [&input](const char* name, auto call) {
+    Mesh b = input;
+    bool thrown = false;
+    try { call(b); }
+    catch(const std::invalid_argument& e) { thrown = std::string(e.what()).find(name) != std::string::npos; }
+    HMO_CHECK(thrown);
+    HMO_CHECK(b.points == input.points);
+  };
+  for(const double bad : {-1.5, 1.5, std::nan("")})
+    refused("target_msj", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, HP::target_msj(bad)); });
+  for(const double bad : {-0.1, 1.5, std::nan("")})
+  {
+    refused("surface_tolerance", [bad](Mesh& b) { CGAL::optimize_hex_mesh(b, HP::surface_tolerance(bad)); });
+    refused("surface_tolerance", [bad](Mesh& b) { CGAL::untangle_hex_mesh(b, HP::surface_tolerance(bad)); });
+  }
 }
 
 static void test_never_worse()
