@@ -715,6 +715,61 @@ void test_global_interior()
   HMO_CHECK(moved > 0 && moved <= r1.free_vertices);
 }
 
+
+// The max-min smoothing's cluster moves (`improve_clusters`): on a grid
+// with its interior perturbed, the clusters of hexes within the band of the
+// MSJ move together: the MSJ rises, no hex ends below the MSJ before, only
+// interior vertices of those hexes move, the SJ values it keeps are those of
+// the positions; clusters above the size cap, or single hexes, stay where
+// they are.
+void test_max_min_clusters()
+{
+  const Hex_mesh_arrays in = graded_perturbed_cube(6, 1.0, 0.25, 4);
+  const Hex_mesh_topology topo(in);
+  const Target_surface target(in);
+  HMO::internal::Worst_element_smoothing smoothing(topo, &target);
+  const std::vector<double> sj0 = HMO::internal::scaled_jacobians(in);
+  const double msj0 = *std::min_element(sj0.begin(), sj0.end());
+  HMO_CHECK(msj0 > 0.);
+  HMO::internal::Worst_element_smoothing_settings s;
+  s.cluster_band = 0.3;
+  std::vector<Vec3> p = in.points;
+  std::vector<double> sj = sj0;
+  std::size_t moves = 0;
+  const double msj = smoothing.improve_clusters(p, sj, msj0, s, moves);
+  Hex_mesh_arrays out = in;
+  out.points = p;
+  const std::vector<double> sj1 = HMO::internal::scaled_jacobians(out);
+  std::size_t moved = 0, moved_wrongly = 0;
+  for(std::size_t v = 0; v < p.size(); ++v)
+  {
+    if(p[v] == in.points[v]) continue;
+    ++moved;
+    bool of_low_hex = false;
+    for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+      of_low_hex = of_low_hex || sj0[c->hex] < msj0 + s.cluster_band;
+    if(topo.is_boundary_vertex(v) || !of_low_hex) ++moved_wrongly;
+  }
+  std::cout << "max-min clusters: MSJ " << msj0 << " -> " << msj << ", " << moves << " steps, " << moved
+            << " vertices moved" << std::endl;
+  HMO_CHECK(sj1 == sj);
+  HMO_CHECK(msj == *std::min_element(sj1.begin(), sj1.end()));
+  HMO_CHECK(msj > msj0 + 0.01);
+  HMO_CHECK(moves > 0 && moved > 0 && moved_wrongly == 0);
+  // no cluster within the caps: nothing moves
+  for(int cap = 0; cap < 2; ++cap)
+  {
+    HMO::internal::Worst_element_smoothing_settings capped = s;
+    if(cap == 0) capped.max_cluster_hexes = 1;
+    else capped.cluster_band = 1e-12; // the worst hex alone
+    std::vector<Vec3> q = in.points;
+    std::vector<double> sq = sj0;
+    std::size_t none = 0;
+    HMO_CHECK(smoothing.improve_clusters(q, sq, msj0, capped, none) == msj0);
+    HMO_CHECK(none == 0 && q == in.points && sq == sj0);
+  }
+}
+
 int main(int, char** argv)
 {
   test_exp_minus();
@@ -728,6 +783,7 @@ int main(int, char** argv)
   test_shared_mesh();
   test_max_min_batches();
   test_max_min_settled_vertices();
+  test_max_min_clusters();
   test_global_interior();
   return hmo_test::report(argv[0]);
 }

@@ -42,7 +42,13 @@
 //     rises: no element ever falls below the smallest value it was compared
 //     with, hence the mesh's MSJ never decreases and no element inverts.
 // Sweeps visit the vertices of the elements below the current goal
-// (min(target, MSJ + band)) worst first, until the MSJ stops rising.
+// (min(target, MSJ + band)) worst first, until the MSJ stops rising. When a
+// sweep stalls, the interior vertices of each element at the minimum move
+// together (`improve_element`), then those of each cluster of elements near
+// the minimum that share vertices (`improve_clusters`): single-vertex and
+// single-element moves both stall where several elements at the minimum
+// share vertices, each move lowering one of the others (the manual's
+// implementation notes have the figures).
 //
 // Parallel and deterministic: a sweep cuts its worst-first list into
 // batches of vertices that cannot see each other's moves (no shared hex; on
@@ -63,6 +69,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <unordered_map>
 #include <vector>
 
 namespace CGAL {
@@ -87,6 +95,14 @@ struct Worst_element_smoothing_settings
   /// when a sweep stalls, move the interior vertices of the worst elements
   /// together (see `improve_element`)
   bool element_moves = true;
+  /// when the element moves stall too, move the interior vertices of each
+  /// cluster of elements within `cluster_band` of the MSJ together, up to
+  /// `cluster_steps` steps, clusters of 2 to `max_cluster_hexes` hexes (see
+  /// `improve_clusters`)
+  bool cluster_moves = true;
+  double cluster_band = 0.005;
+  int cluster_steps = 20;
+  std::size_t max_cluster_hexes = 64;
   /// each batch of a sweep is taken from this many vertices at the head of
   /// the worst-first list (see the top)
   std::size_t batch_window = 256;
@@ -161,6 +177,7 @@ public:
           }
         now = *std::min_element(sj.begin(), sj.end());
       }
+      if(now - msj < s.min_gain && s.cluster_moves) now = improve_clusters(points, sj, now, s, rep.moves);
       idle = (now - msj < s.min_gain) ? idle + 1 : 0;
       rep.msj_after = now;
       if(idle >= s.patience) break;
@@ -213,6 +230,69 @@ public:
       m = (std::min)(m, scaled_jacobian(p));
     }
     return m;
+  }
+
+  /// Element moves stall where the elements at the minimum form a cluster
+  /// (sharing vertices) that only a joint move raises: the hexes within
+  /// `cluster_band` of the MSJ `msj`, connected through their interior
+  /// vertices, clusters of at most `max_cluster_hexes`, each gets up to
+  /// `cluster_steps` joint steps of all its interior vertices, worst cluster
+  /// first. `sj`: the scaled Jacobian of every hex, kept up to date.
+  /// Returns the MSJ after them.
+  double improve_clusters(std::vector<Vec3>& points, std::vector<double>& sj, double msj,
+                          const Worst_element_smoothing_settings& s, std::size_t& moves)
+  {
+    std::vector<std::size_t> low;
+    for(std::size_t h = 0; h < sj.size(); ++h)
+      if(sj[h] < (std::min)(msj + s.cluster_band, s.target_sj)) low.push_back(h);
+    // union-find over the low hexes, joined through shared interior vertices
+    std::vector<std::size_t> parent(low.size());
+    for(std::size_t i = 0; i < low.size(); ++i) parent[i] = i;
+    auto root = [&parent](std::size_t i) {
+      while(parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::unordered_map<std::size_t, std::size_t> first_at; // interior vertex -> first low hex (index) on it
+    for(std::size_t i = 0; i < low.size(); ++i)
+      for(std::size_t v : m_topo.hexes()[low[i]])
+      {
+        if(m_topo.is_boundary_vertex(v)) continue;
+        const auto ins = first_at.emplace(v, i);
+        if(!ins.second)
+        {
+          const std::size_t a = root(i), b = root(ins.first->second);
+          if(a != b) parent[(std::max)(a, b)] = (std::min)(a, b);
+        }
+      }
+    std::map<std::size_t, std::vector<std::size_t> > clusters; // by root, i.e. by their first low hex
+    for(std::size_t i = 0; i < low.size(); ++i) clusters[root(i)].push_back(low[i]);
+    std::vector<std::pair<double, std::size_t> > worst_first;
+    for(const auto& c : clusters)
+    {
+      if(c.second.size() < 2 || c.second.size() > s.max_cluster_hexes) continue;
+      double m = 2.;
+      for(std::size_t h : c.second) m = (std::min)(m, sj[h]);
+      worst_first.push_back({m, c.first});
+    }
+    std::sort(worst_first.begin(), worst_first.end());
+    for(const auto& w : worst_first)
+    {
+      if(time_limit_reached(s.time_limit)) break;
+      const std::vector<std::size_t>& hexes = clusters[w.second];
+      std::vector<std::size_t> verts;
+      for(std::size_t h : hexes)
+        for(std::size_t v : m_topo.hexes()[h])
+          if(!m_topo.is_boundary_vertex(v)) verts.push_back(v);
+      std::sort(verts.begin(), verts.end());
+      verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+      const double length = mean_edge_length(points, hexes);
+      std::size_t steps = 0;
+      while(steps < std::size_t(s.cluster_steps) && move_together(points, verts, length, sj)) ++steps;
+      moves += steps;
+      if(steps > 0 && !m_settled.empty())
+        for(std::size_t v : verts) unsettle_around(v);
+    }
+    return *std::min_element(sj.begin(), sj.end());
   }
 
 private:
@@ -399,6 +479,26 @@ private:
   {
     std::vector<std::size_t> verts;
     for(std::size_t v : m_topo.hexes()[h]) if(!m_topo.is_boundary_vertex(v)) verts.push_back(v);
+    return move_together(points, verts, mean_edge_length(points, std::vector<std::size_t>(1, h)), sj);
+  }
+
+  /// the mean edge length of `hexes`
+  double mean_edge_length(const std::vector<Vec3>& points, const std::vector<std::size_t>& hexes) const
+  {
+    double length = 0.;
+    for(std::size_t k : hexes)
+      for(int e = 0; e < 12; ++e)
+        length += norm(points[m_topo.hexes()[k][hex_edges[e][0]]] - points[m_topo.hexes()[k][hex_edges[e][1]]]);
+    return length / (12. * double(hexes.size()));
+  }
+
+  /// One ascent step of the vertices `verts` (interior, distinct) together
+  /// on the soft minimum of the hexes around them, accepted only if the
+  /// minimum over those hexes rises; the trial steps start at 0.3 `length`.
+  /// Returns 1 if accepted, else 0.
+  std::size_t move_together(std::vector<Vec3>& points, const std::vector<std::size_t>& verts, double length,
+                            std::vector<double>& sj) const
+  {
     if(verts.empty()) return 0;
     std::vector<std::size_t> around;
     for(std::size_t v : verts)
@@ -410,10 +510,6 @@ private:
       for(std::size_t k : around) m = (std::min)(m, hex_sj(points, k));
       return m;
     };
-    double length = 0.;
-    for(int k = 0; k < 12; ++k)
-      length += norm(points[m_topo.hexes()[h][hex_edges[k][0]]] - points[m_topo.hexes()[h][hex_edges[k][1]]]);
-    length /= 12.;
     if(!(length > 0.)) return 0;
     double f0 = 0.;
     std::vector<Vec3> g;
