@@ -34,8 +34,9 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
     s.schedule.msj_stage_edge_angle_passes = 0;
   s.sharp_angle = u.sharp_angle;
   s.reference_feature_angle = u.reference_feature_angle;
-  s.schedule.crease_seed_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::crease_seed_angle),
-                                                  s.schedule.crease_seed_angle);
+  s.schedule.crease_seed_angle = checked_parameter(
+    "crease_seed_angle",
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::crease_seed_angle), s.schedule.crease_seed_angle), 0., 180.);
   s.schedule.turn_focus_band = checked_parameter(
     "turn_focus_band",
     choose_parameter(get_parameter(np, hex_mesh_internal_np::turn_focus_band), s.schedule.turn_focus_band), 0., 1.,
@@ -198,17 +199,17 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{the boundary of the input mesh}
   \cgalParamNEnd
   \cgalParamNBegin{sharp_angle}
-    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
+    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{165}
   \cgalParamNEnd
   \cgalParamNBegin{reference_feature_angle}
-    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off}
+    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{150}
   \cgalParamNEnd
   \cgalParamNBegin{crease_seed_angle}
-    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. 150 takes the corners of block_in from 186 to 16; the manual's implementation notes have what it changes on the published rows and the stress sets}
+    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. 150 takes the corners of block_in from 186 to 16; the manual's implementation notes have what it changes on the published rows and the stress sets; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{180}
   \cgalParamNEnd
@@ -218,12 +219,12 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{0.15}
   \cgalParamNEnd
   \cgalParamNBegin{alpha}
-    \cgalParamDescription{weight of the feature and corner constraints in the edge-angle stages (at least 500)}
+    \cgalParamDescription{weight of the feature and corner constraints in the edge-angle stages (a value below 500 counts as 500); in [0, 1e12] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{1000}
   \cgalParamNEnd
   \cgalParamNBegin{beta}
-    \cgalParamDescription{weight of the tangent-plane constraint in the edge-angle stages (at least 500)}
+    \cgalParamDescription{weight of the tangent-plane constraint in the edge-angle stages (a value below 500 counts as 500); in [0, 1e12] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{1000}
   \cgalParamNEnd
@@ -248,7 +249,7 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine.}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine.; at least 0 (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd

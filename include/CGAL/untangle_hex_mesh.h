@@ -71,8 +71,10 @@ void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vec
 template <class NamedParameters>
 double time_limit_parameter(const NamedParameters& np)
 {
-  return parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
-                                      std::numeric_limits<double>::infinity());
+  return checked_parameter("time_limit",
+                           parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
+                                                        std::numeric_limits<double>::infinity()),
+                           0., std::numeric_limits<double>::infinity());
 }
 
 /// the `stop_flag` named parameter, or null
@@ -91,14 +93,20 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  s.sharp_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.);
-  s.reference_feature_angle = choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_feature_angle), 150.);
-  s.alpha = choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.);
-  s.beta = choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.);
-  s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6);
+  // (the ranges are those of the tool and of the Python binding)
+  s.sharp_angle =
+    checked_parameter("sharp_angle", choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.), 0., 180.);
+  s.reference_feature_angle = checked_parameter(
+    "reference_feature_angle",
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_feature_angle), 150.), 0., 180.);
+  s.alpha = checked_parameter("alpha", choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.), 0., 1e12);
+  s.beta = checked_parameter("beta", choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.), 0., 1e12);
+  s.xi = checked_parameter("xi", choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6), 0., 10.);
   s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
-  s.local_iterations = choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20);
-  s.max_rounds = choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60);
+  s.local_iterations = static_cast<int>(checked_parameter(
+    "local_iterations", choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20), 1., 1e9));
+  s.max_rounds = static_cast<int>(checked_parameter(
+    "number_of_iterations", choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60), 0., 1e9));
   s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
   const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
   s.schedule = method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule();
@@ -162,27 +170,27 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDefault{0.005}
   \cgalParamNEnd
   \cgalParamNBegin{sharp_angle}
-    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features}
+    \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{165}
   \cgalParamNEnd
   \cgalParamNBegin{reference_feature_angle}
-    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off}
+    \cgalParamDescription{with `reference_surface`: the reference's edges with a dihedral angle below this, in degrees, are its creases; chains of boundary edges are matched to them and to their corners, and follow them (feature recovery), in place of the features found with `sharp_angle`. A reference without clear creases (fewer than half of the edges below this angle are also below it minus 30 degrees, as on a faceted organic surface) keeps the classification by `sharp_angle`. 0 turns recovery off; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{150}
   \cgalParamNEnd
   \cgalParamNBegin{alpha}
-    \cgalParamDescription{initial weight of the feature and corner constraints}
+    \cgalParamDescription{initial weight of the feature and corner constraints; in [0, 1e12] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{1000}
   \cgalParamNEnd
   \cgalParamNBegin{beta}
-    \cgalParamDescription{initial weight of the tangent-plane constraint}
+    \cgalParamDescription{initial weight of the tangent-plane constraint; in [0, 1e12] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{1000}
   \cgalParamNEnd
   \cgalParamNBegin{xi}
-    \cgalParamDescription{initial ξ: target edge lengths are at least ξ times the mean boundary edge length}
+    \cgalParamDescription{initial ξ: target edge lengths are at least ξ times the mean boundary edge length; in [0, 10] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.6}
   \cgalParamNEnd
@@ -192,12 +200,12 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{local_iterations}
-    \cgalParamDescription{local-global iterations per region and round}
+    \cgalParamDescription{local-global iterations per region and round; at least 1 (`std::invalid_argument` otherwise)}
     \cgalParamType{`int`}
     \cgalParamDefault{20}
   \cgalParamNEnd
   \cgalParamNBegin{number_of_iterations}
-    \cgalParamDescription{maximum number of rounds of the edge-angle stage}
+    \cgalParamDescription{maximum number of rounds of the edge-angle stage; at least 0 (`std::invalid_argument` otherwise)}
     \cgalParamType{`int`}
     \cgalParamDefault{60}
   \cgalParamNEnd
@@ -212,7 +220,7 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDefault{`Method::package`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence.}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence.; at least 0 (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd

@@ -199,6 +199,34 @@ static void test_turn_focus_band()
     refused("surface_tolerance", [bad](Mesh& b) { CGAL::optimize_hex_mesh(b, HP::surface_tolerance(bad)); });
     refused("surface_tolerance", [bad](Mesh& b) { CGAL::untangle_hex_mesh(b, HP::surface_tolerance(bad)); });
   }
+  // the untangling's numbers, through all three functions, and the time limit
+  const double nan = std::nan("");
+  for(int f = 0; f < 3; ++f)
+  {
+    const auto through = [f](auto np) {
+      return [f, np](Mesh& b) {
+        if(f == 0) CGAL::untangle_hex_mesh(b, np);
+        else if(f == 1) CGAL::improve_hex_mesh_quality(b, np);
+        else CGAL::optimize_hex_mesh(b, np);
+      };
+    };
+    for(const double bad : {-1., 181., nan})
+    {
+      refused("sharp_angle", through(HP::sharp_angle(bad)));
+      refused("reference_feature_angle", through(HP::reference_feature_angle(bad)));
+    }
+    for(const double bad : {-1., 2e12, nan})
+    {
+      refused("alpha", through(HP::alpha(bad)));
+      refused("beta", through(HP::beta(bad)));
+    }
+    for(const double bad : {-0.1, 11., nan}) refused("xi", through(HP::xi(bad)));
+    refused("local_iterations", through(HP::local_iterations(0)));
+    refused("number_of_iterations", through(CGAL::parameters::number_of_iterations(-1)));
+    for(const double bad : {-1., nan}) refused("time_limit", through(HP::time_limit(bad)));
+  }
+  for(const double bad : {-1., 181., nan})
+    refused("crease_seed_angle", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, HP::crease_seed_angle(bad)); });
 }
 
 static void test_never_worse()
