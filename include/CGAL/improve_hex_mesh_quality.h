@@ -22,8 +22,7 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   using parameters::get_parameter;
   s.target_msj = checked_parameter("target_msj", choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), 1.),
                                    -1., 1.);
-  s.surface_tolerance = checked_parameter(
-    "surface_tolerance", choose_parameter(get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
+  s.surface_tolerance = surface_tolerance_parameter(np);
   s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
   s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
   s.schedule = u.schedule; // the method's schedule (`read_untangle_parameters()`)
@@ -249,7 +248,7 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine.; at least 0 (`std::invalid_argument` otherwise)}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine. It is at least 0 (`std::invalid_argument` otherwise).}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd

@@ -77,6 +77,15 @@ double time_limit_parameter(const NamedParameters& np)
                            0., std::numeric_limits<double>::infinity());
 }
 
+/// the `surface_tolerance` named parameter, in [0, 1] (default 0.005)
+template <class NamedParameters>
+double surface_tolerance_parameter(const NamedParameters& np)
+{
+  return checked_parameter(
+    "surface_tolerance",
+    parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
+}
+
 /// the `stop_flag` named parameter, or null
 template <class NamedParameters>
 const std::atomic<bool>* stop_flag_parameter(const NamedParameters& np)
@@ -220,7 +229,7 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDefault{`Method::package`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence.; at least 0 (`std::invalid_argument` otherwise)}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence. It is at least 0 (`std::invalid_argument` otherwise).}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd
@@ -271,9 +280,7 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
   const std::string warning = HMO::internal::require_reference_fit(
     arrays, s.reference_points, s.reference_triangles,
-    HMO::internal::checked_parameter(
-      "surface_tolerance", choose_parameter(get_parameter(np, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005),
-      0., 1.));
+    HMO::internal::surface_tolerance_parameter(np));
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);
