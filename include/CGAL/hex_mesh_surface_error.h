@@ -7,6 +7,7 @@
 #define CGAL_HEX_MESH_SURFACE_ERROR_H
 
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/reference_fit.h>
@@ -131,7 +132,7 @@ for the verdicts and what is measured).
 \param np1 optional named parameters for `mesh`:
 \cgalNamedParamsBegin
   \cgalParamNBegin{surface_tolerance}
-    \cgalParamDescription{distance, relative to the reference's bounding-box diagonal, beyond which a vertex makes the reference `distant`}
+    \cgalParamDescription{distance, relative to the reference's bounding-box diagonal, beyond which a vertex makes the reference `distant`; in [0, 1] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.005}
   \cgalParamNEnd
@@ -164,8 +165,7 @@ hex_mesh_reference_fit(const Indexed_hex_mesh<Point_3>& mesh,
   std::vector<HMO::Vec3> points;
   std::vector<HMO::Tri> triangles;
   HMO::face_graph_to_triangle_soup(reference, vpm, gt, points, triangles);
-  const double tolerance = parameters::choose_parameter(
-    parameters::get_parameter(np1, CGAL::hex_mesh_internal_np::surface_tolerance), 0.005);
+  const double tolerance = HMO::surface_tolerance_parameter(np1);
   return HMO::measure_reference_fit(HMO::hex_mesh_to_arrays(mesh, np1), points, triangles, tolerance);
 }
 

@@ -9,6 +9,8 @@
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_untangler.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/reference_fit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/unresolved_elements.h>
@@ -20,9 +22,6 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <atomic>
-#include <limits>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,61 +29,19 @@ namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 
-/// `value` of the named parameter `name` when it lies in [min, max] (in
-/// (min, max] with `min_excluded`); `std::invalid_argument` saying so
-/// otherwise, NaN included, before anything moves
-inline double checked_parameter(const char* name, double value, double min, double max, bool min_excluded = false)
-{
-  if(value >= min && value <= max && !(min_excluded && value == min)) return value;
-  std::ostringstream message;
-  message << name << " must be in " << (min_excluded ? "(" : "[") << min << ", " << max << "], got " << value;
-  throw std::invalid_argument(message.str());
-}
-
 struct No_reference_surface {};
 
-/// a FaceListGraph as a triangle soup (polygons fanned)
+/// a FaceListGraph as a triangle soup (polygons fanned), its points read
+/// through its own `vertex_point` map
 template <class TriangleMesh, class GeomTraits>
 void face_graph_to_soup(const TriangleMesh& tm, const GeomTraits& gt, std::vector<Vec3>& points, std::vector<Tri>& tris)
 {
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
-  auto vpm = get(CGAL::vertex_point, tm);
-  std::map<vertex_descriptor, std::size_t> index;
-  for(vertex_descriptor v : vertices(tm))
-  {
-    index.emplace(v, points.size());
-    points.push_back(to_vec3(get(vpm, v), gt));
-  }
-  for(auto f : faces(tm))
-  {
-    std::vector<std::size_t> poly;
-    for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm)) poly.push_back(index[v]);
-    for(std::size_t i = 1; i + 1 < poly.size(); ++i) tris.push_back({poly[0], poly[i], poly[i + 1]});
-  }
+  face_graph_to_triangle_soup(tm, get(CGAL::vertex_point, tm), gt, points, tris);
 }
 
 template <class GeomTraits>
 void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vector<Vec3>&, std::vector<Tri>&)
 {}
-
-/// the `time_limit` named parameter: seconds, or infinity (no limit)
-template <class NamedParameters>
-double time_limit_parameter(const NamedParameters& np)
-{
-  return checked_parameter("time_limit",
-                           parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
-                                                        std::numeric_limits<double>::infinity()),
-                           0., std::numeric_limits<double>::infinity());
-}
-
-/// the `surface_tolerance` named parameter, in [0, 1] (default 0.005)
-template <class NamedParameters>
-double surface_tolerance_parameter(const NamedParameters& np)
-{
-  return checked_parameter(
-    "surface_tolerance",
-    parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
-}
 
 /// the `stop_flag` named parameter, or null
 template <class NamedParameters>

@@ -24,6 +24,7 @@
 #include <iostream>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -812,6 +813,15 @@ void test_reference_fit()
   const Fit loose = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}),
                                                  CGAL::hex_mesh_parameters::surface_tolerance(0.025));
   HMO_CHECK(loose.verdict == Fit::fits);
+  // the tolerance is checked as by the three optimisation functions
+  for(double bad : {-0.1, 2., std::nan("")})
+  {
+    bool thrown = false;
+    try { CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}),
+                                       CGAL::hex_mesh_parameters::surface_tolerance(bad)); }
+    catch(const std::invalid_argument& e) { thrown = std::string(e.what()).find("surface_tolerance") != std::string::npos; }
+    HMO_CHECK(thrown);
+  }
 
   const Fit other_frame = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(10., Vec3{100, 0, 0}));
   std::cout << "mismatched reference: " << other_frame.message << std::endl;
