@@ -21,6 +21,7 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/load_file.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstddef>
@@ -48,8 +49,11 @@ public:
       ++m_line;
       std::size_t end = m_text.find('\n', m_at);
       if(end == std::string::npos) end = m_text.size();
-      std::size_t stop = m_text.find('#', m_at);
-      if(stop == std::string::npos || stop > end) stop = end;
+      // a comment starts at the line's first '#', searched within the line
+      // only (searched to the end of the text, a file without comments
+      // took time quadratic in its number of lines)
+      const std::size_t stop = static_cast<std::size_t>(
+        std::find(m_text.begin() + m_at, m_text.begin() + end, '#') - m_text.begin());
       std::size_t i = m_at;
       while(i < stop)
       {
