@@ -54,6 +54,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_setup.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Pull_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_fitting.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Worst_element_smoothing.h>
@@ -151,6 +152,7 @@ public:
     Run_state st(mesh, res);
     set_up(st, original);
     if(m_s.pull_back && !stopped()) pull_back_stage(st); // around what is inverted, if anything (see Pull_back.h)
+    if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
     if(!stopped()) surface_guard_set_up(st, original);
     if(!stopped() && restoration_stage(st) > 0) st.current_error = -1.;
     if(!stopped()) msj_stages_with_retry(st);
@@ -607,6 +609,40 @@ private:
       << br.distance_after / 0.025 << " mean edge lengths";
     report_stage(st, "surface restoration", q, t, br.sweeps, d.str());
     return br.moves;
+  }
+
+  /// Stage "surface fit" (Surface_fitting.h), when the surface error is
+  /// above the tolerance: kept only if it lowers the error
+  void surface_fit_stage(Run_state& st)
+  {
+    const double error_before = st.current_error >= 0. ? st.current_error : measure_error(st);
+    if(error_before <= m_s.surface_tolerance) return;
+    const auto t = Clock::now();
+    m_visitor.stage_started("surface fit", 0);
+    const Quality_statistics q = quality_statistics(st.mesh);
+    Surface_fitting_settings fs;
+    fs.aim = m_s.schedule.surface_fit_aim * st.tolerance;
+    fs.floor = q.msj;
+    fs.max_sweeps = m_s.schedule.surface_fit_sweeps;
+    fs.time_limit = m_s.time_limit;
+    const std::vector<Vec3> before = st.mesh.points;
+    Surface_fitting fit(*st.topo, *st.ts, m_guard_points, m_guard_tris, fs);
+    const Surface_fitting_report fr = fit.run(st.mesh.points);
+    const double error_after = measure_error(st);
+    const bool kept = error_after < error_before;
+    if(!kept)
+    {
+      st.mesh.points = before;
+      st.current_error = error_before;
+    }
+    else
+      st.ts->move_target_to(st.mesh.points);
+    std::ostringstream d;
+    d << fr.moves << " boundary moves along the reference in " << fr.sweeps
+      << " sweeps, largest local error " << fr.error_before / st.tolerance << " -> " << fr.error_after / st.tolerance
+      << " tolerances; surface error " << error_before << " -> " << error_after
+      << (kept ? "" : ": not lower, the mesh before the fit is kept");
+    report_stage(st, "surface fit", q, t, fr.sweeps, d.str());
   }
 
   static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }

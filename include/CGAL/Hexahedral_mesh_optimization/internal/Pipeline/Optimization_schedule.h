@@ -37,6 +37,9 @@ struct Optimization_schedule
   bool surface_stage = true;
   /// quality: the surface restoration before and after the MSJ stages
   bool restoration = true;
+  /// quality: the surface fit after the pull-back, when the error is above
+  /// the tolerance (Surface_fitting.h)
+  bool surface_fitting = true;
   /// quality: the max-min smoothing in each MSJ stage
   bool msj_stage_max_min = true;
 
@@ -109,6 +112,11 @@ struct Optimization_schedule
   int pull_back_iterations = 40;
   /// sweeps of the surface restoration
   int restoration_sweeps = 8;
+  /// the surface fit: vertices whose local two-sided error is above
+  /// `surface_fit_aim` of the tolerance slide along the reference, at most
+  /// `surface_fit_sweeps` sweeps (see the manual)
+  double surface_fit_aim = 0.8;
+  int surface_fit_sweeps = 8;
   /// the MSJ stages: targets 0, `msj_stage_step`, 2 × that, … ; in each,
   /// after the max-min smoothing, the edge-angle passes (Algorithm 1) go on
   /// while one raises the MSJ by at least `msj_stage_min_gain` or frees an
@@ -241,6 +249,7 @@ struct Optimization_schedule
     Optimization_schedule s;
     s.interior_stage = s.barrier_stage = s.surface_stage = false;
     s.restoration = false;
+    s.surface_fitting = false;
     s.msj_stage_max_min = false;
     s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
     s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();

@@ -413,6 +413,9 @@ public:
       p = s * p + t;
     for(Vec3& p : omega_)
       p = s * p + t;
+    for(std::vector<Vec3>& c : reference_creases_)
+      for(Vec3& p : c)
+        p = s * p + t;
     if(s < 0.)
       for(Vec3& n : outward_)
         n = -1. * n;
@@ -447,6 +450,16 @@ public:
   }
   const std::vector<Vec3>& reference_points() const { return ref_points_; }
   const std::vector<Tri>& reference_triangles() const { return ref_tris_; }
+  /// the reference's creases as polylines (a closed one repeats its first
+  /// point) when feature recovery ran and found some; empty otherwise
+  const std::vector<std::vector<Vec3>>& reference_creases() const { return reference_creases_; }
+  /// Moves Ω_t to `points` (every boundary vertex on the reference): the
+  /// feature lines then pass through the vertices as they are, so that the
+  /// later stages' projections keep them there (Surface_fitting.h)
+  void move_target_to(const std::vector<Vec3>& points)
+  {
+    for(std::size_t bi = 0; bi < boundary_.vertices.size(); ++bi) omega_[bi] = points[boundary_.vertices[bi]];
+  }
   /// what feature recovery found (`Target_surface_parameters::reference_feature_angle`)
   const Feature_recovery_summary& feature_recovery_summary() const { return summary_; }
 
@@ -761,6 +774,12 @@ private:
       else closest_on_reference(P_match[bi], P[bi]);
     }, 256);
     omega_ = smoothed_around_features(P, rec.placed);
+    reference_creases_.clear();
+    for(const Reference_feature_curve& c : rf.curves)
+    {
+      reference_creases_.push_back(c.points);
+      if(c.closed && !c.points.empty()) reference_creases_.back().push_back(c.points.front());
+    }
 
     sharp_edge_ = rec.sharp_edge;
     std::vector<std::size_t> degree;
@@ -1135,6 +1154,7 @@ private:
   std::vector<std::size_t> line_of_, place_on_line_;
   double mean_edge_length_ = 0.;
   Feature_recovery_summary summary_;
+  std::vector<std::vector<Vec3>> reference_creases_;
 };
 
 } // namespace internal
