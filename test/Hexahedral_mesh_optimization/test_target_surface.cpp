@@ -9,6 +9,8 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_fitting.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/hex_mesh_surface_error.h>
@@ -1066,6 +1068,73 @@ void test_feature_recovery()
   }
 }
 
+// The surface fit (Surface_fitting.h) on a faceted cylinder whose boundary
+// vertices slid around it: every vertex is on the reference
+// (the rims on the reference's creases), yet each quad is a chord across a
+// kink of the reference. The fit must take the error down by sliding the
+// vertices along the surface and the rims along their creases, never
+// taking a hex below the floor.
+void test_surface_fitting()
+{
+  const HMO::Hex_mesh_arrays start = cylinder(4, 3, 1.);
+  const HMO::Hex_mesh_boundary sb = HMO::extract_boundary(start);
+  std::vector<Vec3> ref_points;
+  std::vector<HMO::Tri> ref_triangles;
+  HMO::triangulate_boundary(sb, start.points, HMO::Quad_split::diagonal_02, ref_points, ref_triangles);
+  HMO::Triangle_surface reference;
+  HMO::boundary_to_surface_mesh(sb, start.points, reference, HMO::Quad_split::diagonal_02);
+  // each boundary vertex turned around the axis by up to 0.4 of the angle
+  // between two vertices of the rim (16 of them), then put back on the
+  // reference (as a boundary moved off its surface and pulled back is)
+  HMO::Hex_mesh_arrays m = start;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> turn(-0.4 * CGAL_PI / 8., 0.4 * CGAL_PI / 8.);
+  for(std::size_t v : sb.vertices)
+  {
+    const double a = turn(rng);
+    const Vec3 p = m.points[v];
+    m.points[v] = Vec3{std::cos(a) * p[0] - std::sin(a) * p[1], std::sin(a) * p[0] + std::cos(a) * p[1], p[2]};
+  }
+  HMO::Target_surface_parameters param;
+  param.reference_feature_angle = 150.;
+  param.smoothing_iterations = 0;
+  {
+    const HMO::Target_surface on(m, ref_points, ref_triangles, param);
+    for(std::size_t v : on.boundary().vertices) on.closest_on_reference(m.points[v], m.points[v]);
+  }
+  const double before = HMO::relative_surface_error(m, reference);
+  const HMO::Quality_statistics q0 = HMO::quality_statistics(m);
+  const HMO::Target_surface ts(m, ref_points, ref_triangles, param);
+  HMO_CHECK(ts.feature_recovery_summary().recovered);
+  HMO_CHECK(!ts.reference_creases().empty());
+  const HMO::Hex_mesh_topology topo(m);
+  HMO::Surface_fitting_settings fs;
+  fs.aim = 0.1 * before * HMO::diagonal(HMO::bbox_of(reference));
+  // (the cylinder's hexes at the corners of its square rings are at the
+  // MSJ, and every vertex around them is in one: at that floor nothing moves)
+  fs.floor = 0.1;
+  HMO::Surface_fitting fit(topo, ts, ref_points, ref_triangles, fs);
+  const HMO::Surface_fitting_report fr = fit.run(m.points);
+  const double after = HMO::relative_surface_error(m, reference);
+  const HMO::Quality_statistics q1 = HMO::quality_statistics(m);
+  std::cout << "surface fit on a turned cylinder: error " << before << " -> " << after << ", " << fr.moves
+            << " moves in " << fr.sweeps << " sweeps, MSJ " << q0.msj << " -> " << q1.msj << std::endl;
+  HMO_CHECK(before > 0.005);
+  HMO_CHECK(after < 0.7 * before);
+  HMO_CHECK(fr.error_after < fr.error_before);
+  HMO_CHECK(q1.inverted == 0);
+  HMO_CHECK(q1.msj >= fs.floor - 1e-12);
+  // every boundary vertex is still on the reference
+  double off = 0.;
+  for(std::size_t v : ts.boundary().vertices)
+  {
+    Vec3 q;
+    ts.closest_on_reference(m.points[v], q);
+    off = (std::max)(off, HMO::norm(q - m.points[v]));
+  }
+  HMO_CHECK(off < 1e-9);
+}
+
 int main(int, char** argv)
 {
   test_boundary_extraction();
@@ -1078,6 +1147,7 @@ int main(int, char** argv)
   test_straddle_bound();
   test_surface_error_after_change();
   test_reference_fit();
+  test_surface_fitting();
   test_shared_data();
   return hmo_test::report(argv[0]);
 }

@@ -46,8 +46,10 @@
 //     (`Worst_element_smoothing::keeps_floor`).
 // Vertices are visited worst first; the samples are assigned to their
 // closest quad again before every sweep. The sweeps stop when none moved,
-// when one did not lower the largest local error (by `min_gain` of `aim`),
-// after `max_sweeps`, or at the run's time limit (a hard stop). The stage
+// when one lowered neither the largest local error (by `min_gain` of `aim`)
+// nor the sum of the E_v (by `min_sweep_gain` of it: where every quad is at
+// the largest error, the largest falls only once all have moved), after
+// `max_sweeps`, or at the run's time limit (a hard stop). The stage
 // then moves the target surface's positions to the result, so that the
 // feature lines of the later stages pass through the fitted chains.
 
@@ -83,6 +85,9 @@ struct Surface_fitting_settings
   int step_halvings = 5;
   /// a move must lower the local error by more than this fraction of `aim`
   double min_gain = 1e-3;
+  /// a sweep that does not lower the largest error must lower the sum of
+  /// the vertices' energies by this fraction, or the sweeps stop
+  double min_sweep_gain = 0.1;
   /// spacing of the reference's samples, in mean boundary edge lengths
   double spacing = 0.25;
   int max_sweeps = 8;
@@ -122,20 +127,28 @@ public:
   Surface_fitting_report run(std::vector<Vec3>& points)
   {
     Surface_fitting_report rep;
-    std::vector<double> error(m_topo.number_of_vertices(), 0.);
-    // F_v of every boundary vertex, the samples assigned again first
-    // (independent reads: in parallel, the same values); the largest
+    std::vector<double> error(m_topo.number_of_vertices(), 0.), energy(m_topo.number_of_vertices(), 0.);
+    // F_v and E_v of every boundary vertex, the samples assigned again first
+    // (independent reads: in parallel, the same values); the largest F_v
+    // and the sum of the E_v
     auto measure_all = [&] {
       assign_samples(points);
       parallel_for_each_index(m_b.vertices.size(), [&](std::size_t bi) {
         const std::size_t v = m_b.vertices[bi];
-        error[v] = local_error(points, v, points[v]);
+        const Local_measure lm = local_measure(points, v, points[v]);
+        error[v] = lm.largest;
+        energy[v] = lm.energy;
       }, 64);
-      double largest = 0.;
-      for(std::size_t v : m_b.vertices) largest = (std::max)(largest, error[v]);
-      return largest;
+      std::pair<double, double> largest_and_total(0., 0.);
+      for(std::size_t v : m_b.vertices)
+      {
+        largest_and_total.first = (std::max)(largest_and_total.first, error[v]);
+        largest_and_total.second += energy[v];
+      }
+      return largest_and_total;
     };
-    rep.error_before = rep.error_after = measure_all();
+    std::pair<double, double> now = measure_all();
+    rep.error_before = rep.error_after = now.first;
     for(int sweep = 0; sweep < m_s.max_sweeps; ++sweep)
     {
       if(time_limit_reached(m_s.time_limit)) break;
@@ -153,10 +166,13 @@ public:
       }
       rep.moves += moved;
       if(moved == 0) break;
-      const double largest = measure_all();
-      // converged: the sweep did not lower the largest error
-      const bool stalled = largest > rep.error_after - m_s.min_gain * m_s.aim;
-      rep.error_after = largest;
+      const std::pair<double, double> next = measure_all();
+      // converged: the sweep lowered neither the largest error nor, by
+      // `min_sweep_gain` of it, the energy
+      const bool stalled = next.first > now.first - m_s.min_gain * m_s.aim &&
+                           next.second > (1. - m_s.min_sweep_gain) * now.second;
+      now = next;
+      rep.error_after = now.first;
       if(stalled) break;
     }
     return rep;
