@@ -612,8 +612,8 @@ private:
   }
 
   /// Stage "surface fit" (Surface_fitting.h), with a user's reference,
-  /// when the surface error is above the tolerance: kept only if it lowers
-  /// the error. With the input's own boundary as the reference the
+  /// when the surface error is above the tolerance: kept only if it brings
+  /// the error close to the tolerance (see below). With the input's own boundary as the reference the
   /// restoration moves the boundary vertices to their input positions,
   /// where the error is 0 (bunny_dualsheet: the fit took 3.7 s and was not kept).
   void surface_fit_stage(Run_state& st)
@@ -633,7 +633,15 @@ private:
     Surface_fitting fit(*st.topo, *st.ts, m_guard_points, m_guard_tris, fs);
     const Surface_fitting_report fr = fit.run(st.mesh.points);
     const double error_after = measure_error(st);
-    const bool kept = error_after < error_before;
+    // kept when it removes at least `surface_fit_min_excess_cut` of the
+    // error's excess over the tolerance: a fit that gets nowhere near the
+    // tolerance only takes the quality down (impeller_stresstest_edgecone,
+    // every vertex perturbed: 0.0118 -> 0.0089, and the MSJ ended above the
+    // unperturbed mesh's in 2 of 5 runs instead of 5), one that gets close
+    // lets the later stages finish (hanger seed 5: 0.0165 -> 0.0075, 0.0050 at the end)
+    const double tol = m_s.surface_tolerance;
+    const bool kept = error_after < error_before &&
+                      error_after - tol <= (1. - m_s.schedule.surface_fit_min_excess_cut) * (error_before - tol);
     if(!kept)
     {
       st.mesh.points = before;
@@ -645,7 +653,7 @@ private:
     d << fr.moves << " boundary moves along the reference in " << fr.sweeps
       << " sweeps, largest local error " << fr.error_before / st.tolerance << " -> " << fr.error_after / st.tolerance
       << " tolerances; surface error " << error_before << " -> " << error_after
-      << (kept ? "" : ": not lower, the mesh before the fit is kept");
+      << (kept ? "" : ": not close enough to the tolerance, the mesh before the fit is kept");
     report_stage(st, "surface fit", q, t, fr.sweeps, d.str());
   }
 

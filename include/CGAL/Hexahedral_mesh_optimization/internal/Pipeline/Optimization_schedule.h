@@ -116,6 +116,9 @@ struct Optimization_schedule
   /// `surface_fit_aim` of the tolerance slide along the reference, at most
   /// `surface_fit_sweeps` sweeps (see the manual)
   double surface_fit_aim = 0.8;
+  /// the fit is kept only if it removes at least this fraction of the
+  /// surface error's excess over the tolerance (see the manual)
+  double surface_fit_min_excess_cut = 0.5;
   int surface_fit_sweeps = 8;
   /// the MSJ stages: targets 0, `msj_stage_step`, 2 × that, … ; in each,
   /// after the max-min smoothing, the edge-angle passes (Algorithm 1) go on

@@ -90,6 +90,7 @@ struct Closest
   double arc = 0.;  // arc length of the closest point from the polyline's start
   Vec3 point = {0., 0., 0.};
   double squared_distance = std::numeric_limits<double>::max();
+  std::size_t segment = 0; ///< the segment (from pts[segment] to pts[segment + 1]) it lies on
 };
 
 inline Closest closest_on_polyline(const std::vector<Vec3>& pts, const Vec3& p)
@@ -104,10 +105,10 @@ inline Closest closest_on_polyline(const std::vector<Vec3>& pts, const Vec3& p)
     t = (std::max)(0., (std::min)(1., t));
     const Vec3 q = pts[i] + t * ab;
     const double d = squared_norm(p - q);
-    if(d < best.squared_distance) best = Closest{arc + t * l, q, d};
+    if(d < best.squared_distance) best = Closest{arc + t * l, q, d, i};
     arc += l;
   }
-  if(pts.size() == 1) best = Closest{0., pts[0], squared_norm(p - pts[0])};
+  if(pts.size() == 1) best = Closest{0., pts[0], squared_norm(p - pts[0]), 0};
   return best;
 }
 

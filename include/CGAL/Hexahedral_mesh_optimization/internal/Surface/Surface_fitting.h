@@ -295,24 +295,13 @@ private:
   /// the closest point to p on polyline `crease`, and the unit tangent there
   static Vec3 closest_on_crease(const std::vector<Vec3>& crease, const Vec3& p, Vec3* tangent)
   {
-    Vec3 best = crease.front();
-    double d = squared_norm(p - best);
-    for(std::size_t i = 0; i + 1 < crease.size(); ++i)
+    const feature_recovery_detail::Closest c = feature_recovery_detail::closest_on_polyline(crease, p);
+    if(tangent && c.segment + 1 < crease.size())
     {
-      const Vec3 ab = crease[i + 1] - crease[i];
-      const double ll = squared_norm(ab);
-      if(!(ll > 0.)) continue;
-      const double t = (std::max)(0., (std::min)(1., dot(p - crease[i], ab) / ll));
-      const Vec3 q = crease[i] + t * ab;
-      const double di = squared_norm(p - q);
-      if(di < d || (tangent && i == 0 && di <= d))
-      {
-        d = di;
-        best = q;
-        if(tangent) *tangent = (1. / std::sqrt(ll)) * ab;
-      }
+      const Vec3 d = crease[c.segment + 1] - crease[c.segment];
+      if(squared_norm(d) > 0.) *tangent = (1. / norm(d)) * d;
     }
-    return best;
+    return c.point;
   }
 
   /// largest distance to the reference of the quads around v, v at x
