@@ -246,7 +246,7 @@ private:
         }
         project = [this, v](const Vec3& y) { return m_ts.constraint_at(v, y).anchor; };
       }
-      // a move must lower the energy, and the largest error unless it is within the aim
+      // a move must lower the energy and may not raise the largest error above max(aim, F_v)
       const double largest_allowed = (std::max)(m_s.aim, f.largest);
       Local_measure best = f;
       best.energy *= 1. - m_s.min_gain;
