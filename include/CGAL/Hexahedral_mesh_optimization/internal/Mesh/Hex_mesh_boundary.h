@@ -114,6 +114,21 @@ struct Hex_mesh_boundary
     return {vertex_edge_list.data() + vertex_edge_offsets[bi],
             vertex_edge_list.data() + vertex_edge_offsets[bi + 1]};
   }
+  /// the quads around the corners of the quads around boundary vertex `bi`
+  /// (what a move of that vertex may uncover or cover), sorted, into `out`
+  void quads_near(std::size_t bi, std::vector<std::size_t>& out) const
+  {
+    out.clear();
+    const auto around = quads_of(bi);
+    for(const std::size_t* q = around.first; q != around.second; ++q)
+      for(std::size_t u : quads[*q])
+      {
+        const auto r = quads_of(boundary_index[u]);
+        out.insert(out.end(), r.first, r.second);
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
 };
 
 namespace boundary_detail {

@@ -83,7 +83,9 @@ struct Surface_fitting_settings
   /// largest step, in mean boundary edge lengths, and how many times it is halved
   double first_step = 1.0;
   int step_halvings = 5;
-  /// a move must lower the local error by more than this fraction of `aim`
+  /// a move must lower E_v by more than this fraction of it; a sweep that
+  /// lowers the largest error by less than this fraction of `aim` has not
+  /// lowered it
   double min_gain = 1e-3;
   /// a sweep that does not lower the largest error must lower the sum of
   /// the vertices' energies by this fraction, or the sweeps stop
@@ -176,12 +178,6 @@ public:
       if(stalled) break;
     }
     return rep;
-  }
-
-  /// F_v(x) (see the top), mesh units
-  double local_error(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
-  {
-    return local_measure(points, v, x).largest;
   }
 
 private:
@@ -342,15 +338,7 @@ private:
     const double aim2 = m_s.aim * m_s.aim;
     const std::size_t bi = m_b.boundary_index[v];
     std::vector<std::size_t> near;
-    for(std::size_t k = m_b.vertex_quad_offsets[bi]; k < m_b.vertex_quad_offsets[bi + 1]; ++k)
-      for(std::size_t u : m_b.quads[m_b.vertex_quad_list[k]])
-      {
-        const std::size_t ui = m_b.boundary_index[u];
-        near.insert(near.end(), m_b.vertex_quad_list.begin() + std::ptrdiff_t(m_b.vertex_quad_offsets[ui]),
-                    m_b.vertex_quad_list.begin() + std::ptrdiff_t(m_b.vertex_quad_offsets[ui + 1]));
-      }
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
+    m_b.quads_near(bi, near);
     std::vector<K::Triangle_3> cover;
     std::array<Vec3, 4> c;
     for(std::size_t q : near)

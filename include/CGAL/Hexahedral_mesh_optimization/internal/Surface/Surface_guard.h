@@ -320,16 +320,7 @@ private:
     // v's own quads first: a start sample is mostly covered by its own quad
     // (scratch, one per thread: the ASJ smoothing calls this from several)
     thread_local std::vector<std::size_t> near;
-    near.clear();
-    for(std::size_t k = first; k < last; ++k)
-      for(std::size_t u : b.quads[b.vertex_quad_list[k]])
-      {
-        const std::size_t ui = b.boundary_index[u];
-        for(std::size_t j = b.vertex_quad_offsets[ui]; j < b.vertex_quad_offsets[ui + 1]; ++j)
-          near.push_back(b.vertex_quad_list[j]);
-      }
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
+    b.quads_near(bi, near);
     auto own = [&](std::size_t q) {
       for(std::size_t k = first; k < last; ++k)
         if(b.vertex_quad_list[k] == q) return true;
