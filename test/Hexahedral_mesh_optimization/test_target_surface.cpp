@@ -1030,6 +1030,69 @@ void test_feature_recovery()
   HMO_CHECK(off_box < 1e-9);
   HMO_CHECK(off_feature < 0.5 * h);
 
+  // the hex counts of the boundary edges: 1 along the box's edges, 2 elsewhere,
+  // 3 along the concave edge of an L-shaped block
+  {
+    const HMO::Hex_mesh_boundary b = HMO::extract_boundary(original);
+    const std::vector<unsigned char> count = HMO::count_boundary_edge_hexes(b, original.hexes);
+    std::size_t ones = 0, twos = 0;
+    for(unsigned char c : count) { ones += c == 1; twos += c == 2; }
+    HMO_CHECK(ones == 12 * n && twos == count.size() - ones);
+    HMO::Hex_mesh_arrays l_block = grid(4, 4, 2);
+    std::vector<HMO::Hex> kept;
+    for(const HMO::Hex& hx : l_block.hexes)
+    {
+      Vec3 c{0., 0., 0.};
+      for(std::size_t v : hx) c = c + 0.125 * l_block.points[v];
+      if(c[0] < 0.5 || c[1] < 0.5) kept.push_back(hx);
+    }
+    l_block.hexes = kept;
+    const HMO::Hex_mesh_boundary lb = HMO::extract_boundary(l_block);
+    const std::vector<unsigned char> lcount = HMO::count_boundary_edge_hexes(lb, l_block.hexes);
+    std::size_t threes = 0;
+    for(std::size_t e = 0; e < lcount.size(); ++e)
+      if(lcount[e] == 3)
+      {
+        ++threes;
+        const Vec3 a = l_block.points[lb.edges[e][0]], c = l_block.points[lb.edges[e][1]];
+        HMO_CHECK(std::abs(a[0] - 0.5) < 1e-12 && std::abs(a[1] - 0.5) < 1e-12);
+        HMO_CHECK(std::abs(c[0] - 0.5) < 1e-12 && std::abs(c[1] - 0.5) < 1e-12);
+      }
+    HMO_CHECK(threes == 2); // the concave edge, two hexes high
+  }
+
+  // a boundary perturbed by 0.8 of an edge: positions alone match
+  // corners to the wrong vertices; with the hex counts every corner and
+  // crease vertex is the grid's own
+  {
+    HMO::Hex_mesh_arrays strong = original;
+    std::mt19937 g(3);
+    std::normal_distribution<double> w(0., 1.);
+    for(Vec3& p : strong.points) // 0.8 of an edge in a random direction
+    {
+      const Vec3 d{w(g), w(g), w(g)};
+      p = p + (0.8 * h / HMO::norm(d)) * d;
+    }
+    for(double tau : {0., 1.})
+    {
+      HMO::Target_surface_parameters sp = param;
+      sp.recovery.topological_crease_cost = tau;
+      const HMO::Target_surface st(strong, box_points, box_triangles, sp);
+      std::size_t wrong = 0;
+      for(std::size_t v : st.boundary().vertices)
+      {
+        const int planes = on_box_planes(original.points[v], Vec3{0, 0, 0}, Vec3{1, 1, 1}, 1e-12);
+        const Vertex_class expected = planes == 3 ? Vertex_class::corner : planes == 2 ? Vertex_class::sharp : Vertex_class::regular;
+        if(st.vertex_class(v) != expected) ++wrong;
+      }
+      std::cout << "strongly perturbed box, tau " << tau << ": " << HMO::describe(st.feature_recovery_summary()) << "; "
+                << wrong << " boundary vertices of the wrong class" << std::endl;
+      HMO_CHECK(st.feature_recovery_summary().topological == (tau > 0.));
+      // the input is hard enough that positions alone go wrong (6 vertices)
+      HMO_CHECK(tau > 0. ? wrong == 0 : wrong > 0);
+    }
+  }
+
   // a faceted round surface: its edges spread over all angles, no clear
   // features, and the reference is left to the dihedral-angle classification
   {

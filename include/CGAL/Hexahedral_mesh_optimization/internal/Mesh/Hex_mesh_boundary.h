@@ -282,6 +282,28 @@ inline Hex_mesh_boundary extract_boundary(const Hex_mesh_arrays& m)
   return extract_boundary(m.hexes, m.number_of_vertices());
 }
 
+/// The number of hexes around each boundary edge (capped at 255), indexed
+/// as `b.edges`: 2 on a smooth part of a feature-aligned mesh's boundary,
+/// 1 along a convex crease, 3 and more along a concave one.
+inline std::vector<unsigned char> count_boundary_edge_hexes(const Hex_mesh_boundary& b, const std::vector<Hex>& hexes)
+{
+  std::vector<unsigned char> count(b.edges.size(), 0);
+  for(const Hex& h : hexes)
+    for(const auto& he : hex_edges)
+    {
+      const std::size_t u = h[he[0]], v = h[he[1]];
+      if(!b.is_boundary_vertex(u) || !b.is_boundary_vertex(v)) continue;
+      const auto er = b.edges_of(b.boundary_index[u]);
+      for(const std::size_t* e = er.first; e != er.second; ++e)
+        if(b.opposite(*e, u) == v)
+        {
+          if(count[*e] < 255) ++count[*e];
+          break;
+        }
+    }
+  return count;
+}
+
 // ------------------------------------------------------------ geometry
 
 /// Unit normal of a (possibly non-planar) quad: the cross product of its

@@ -38,6 +38,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -66,6 +67,9 @@ struct Reference_feature_curve
   std::size_t first_corner = npos, last_corner = npos;
   /// the patches on its two sides (the same twice along a border or a crease inside a patch)
   std::array<std::size_t, 2> patches = {{npos, npos}};
+  /// the mean angle, in degrees, between the normals of its two sides
+  /// (180° − the dihedral angle; 0 along a border)
+  double normal_turn = 0.;
 };
 
 struct Reference_features
@@ -208,6 +212,24 @@ inline double length_of(const Mesh& m, const Chain& c)
   return l;
 }
 
+/// the mean angle, in degrees, between the normals of the two faces of the
+/// chain's edges (border edges left out; 0 when all are)
+inline double mean_normal_turn(const Mesh& m, const Chain& c)
+{
+  double sum = 0.;
+  std::size_t n = 0;
+  for(Edge e : c.edges)
+  {
+    const Halfedge h = m.halfedge(e);
+    if(m.is_border(h) || m.is_border(m.opposite(h))) continue;
+    const K::Vector_3 a = CGAL::Polygon_mesh_processing::compute_face_normal(m.face(h), m);
+    const K::Vector_3 b = CGAL::Polygon_mesh_processing::compute_face_normal(m.face(m.opposite(h)), m);
+    sum += std::acos((std::max)(-1., (std::min)(1., a * b))) * 180. / CGAL_PI;
+    ++n;
+  }
+  return n > 0 ? sum / double(n) : 0.;
+}
+
 /// sharp degree per vertex
 inline std::vector<std::size_t> degrees(const Mesh& m, const std::vector<unsigned char>& sharp)
 {
@@ -320,6 +342,7 @@ inline Reference_features detect_reference_features(const std::vector<Vec3>& poi
     curve.patches = {{patch_of(h), patch_of(m.opposite(h))}};
     if(curve.patches[0] == npos) curve.patches[0] = curve.patches[1];
     if(curve.patches[1] == npos) curve.patches[1] = curve.patches[0];
+    curve.normal_turn = mean_normal_turn(m, c);
     curve.closed = c.closed && !is_end[std::size_t(c.vertices.front())];
     if(!curve.closed)
     {

@@ -179,6 +179,7 @@ struct Feature_recovery_summary
   std::size_t sharp_edges = 0, clearly_sharp_edges = 0;
   double angle = 0., clear_margin = 0.;
   bool polygon_mesh = true; ///< the reference could be made a polygon mesh
+  bool topological = false; ///< the creases were followed along the mesh's own crease edges as well
 };
 
 /// the summary in words, for a stage report
@@ -199,7 +200,8 @@ inline std::string describe(const Feature_recovery_summary& s)
   }
   return std::to_string(s.corners_matched) + " of " + std::to_string(s.reference_corners)
        + " reference corners matched to boundary vertices, " + std::to_string(s.curves_recovered) + " of "
-       + std::to_string(s.reference_curves) + " reference creases followed by chains of boundary edges";
+       + std::to_string(s.reference_curves) + " reference creases followed by chains of boundary edges"
+       + (s.topological ? " (and by the edges on one hex or on three and more)" : "");
 }
 
 class Target_surface
@@ -244,7 +246,7 @@ public:
     std::vector<Tri> st;
     triangulate_boundary(boundary_, mesh.points, Quad_split::both_diagonals, sp, st);
     build_reference(sp, st);
-    compute_target(mesh.points);
+    compute_target(mesh);
   }
 
   /// Reference = a triangle soup (scenario 1 of Section 3.1), any orientation.
@@ -265,7 +267,7 @@ public:
   {
     CGAL_precondition(boundary.boundary_index.size() == mesh.number_of_vertices());
     build_reference(reference_points, reference_triangles);
-    compute_target(mesh.points);
+    compute_target(mesh);
   }
 
   // the AABB tree refers into `ref_triangles_`: no copies
@@ -562,9 +564,10 @@ private:
   /// Ω_t (Section 3.1): the boundary smoothed along its surface and its
   /// feature lines, projected onto the reference; then its classification,
   /// feature lines and outward normals
-  void compute_target(const std::vector<Vec3>& mesh_points)
+  void compute_target(const Hex_mesh_arrays& mesh)
   {
-    if(param_.reference_feature_angle > 0. && recover_target(mesh_points))
+    const std::vector<Vec3>& mesh_points = mesh.points;
+    if(param_.reference_feature_angle > 0. && recover_target(mesh))
     {
       orient_target();
       return;
@@ -737,8 +740,9 @@ private:
   /// boundary projected onto the reference, its chains and corners put on the
   /// reference's creases and corners, the other vertices smoothed around
   /// them; false (nothing done) when the reference has no features
-  bool recover_target(const std::vector<Vec3>& mesh_points)
+  bool recover_target(const Hex_mesh_arrays& mesh)
   {
+    const std::vector<Vec3>& mesh_points = mesh.points;
     const std::size_t nb = boundary_.vertices.size();
     const double h = mean_boundary_edge([&mesh_points](std::size_t v) { return mesh_points[v]; });
     const Reference_features rf = detect_reference_features(ref_points_, ref_tris_, param_.reference_feature_angle,
@@ -761,13 +765,17 @@ private:
       const Vec3 c = 0.25 * (P_match[bidx(Q[0])] + P_match[bidx(Q[1])] + P_match[bidx(Q[2])] + P_match[bidx(Q[3])]);
       quad_patch[q] = rf.triangle_patch[closest_triangle(c)];
     }, 256);
-    Feature_recovery recovery(boundary_, P_match, h, quad_patch, param_.recovery);
+    const std::vector<unsigned char> edge_hexes = count_boundary_edge_hexes(boundary_, mesh.hexes);
+    Feature_recovery_parameters recovery_param = param_.recovery;
+    recovery_param.corner_turn = param_.crease_continuation_turn;
+    Feature_recovery recovery(boundary_, P_match, h, quad_patch, edge_hexes, recovery_param);
     const Recovered_features rec = recovery.run(rf);
     summary_.recovered = true;
     summary_.reference_corners = rec.corners;
     summary_.corners_matched = rec.corners_matched;
     summary_.reference_curves = rec.curves;
     summary_.curves_recovered = rec.curves_recovered;
+    summary_.topological = rec.topological;
     std::vector<Vec3> P(nb);
     parallel_for_each_index(nb, [&](std::size_t bi) {
       if(rec.placed[bi]) P[bi] = rec.position[bi];
