@@ -261,17 +261,19 @@ private:
     // stops at the first edge past the fraction allowed off the creases
     const double far_allowed = (1. - param_.topological_agreement) * double(off_two);
     const double r2 = CGAL::square(param_.match_radius * h_);
+    std::vector<std::vector<Vec3>> polylines; // the curves, a closed one with its first point repeated
+    for(const Reference_feature_curve& c : rf.curves)
+    {
+      polylines.push_back(c.points);
+      if(c.closed && !c.points.empty()) polylines.back().push_back(c.points.front());
+    }
     for(std::size_t e = 0; e < b_.edges.size() && double(far) <= far_allowed; ++e)
     {
       if(on_two_hexes(e)) continue;
       bool near = false;
       const Vec3 m = 0.5 * (P_[b_.boundary_index[b_.edges[e][0]]] + P_[b_.boundary_index[b_.edges[e][1]]]);
-      for(const Reference_feature_curve& c : rf.curves)
-      {
-        std::vector<Vec3> pts = c.points;
-        if(c.closed && !pts.empty()) pts.push_back(pts.front());
+      for(const std::vector<Vec3>& pts : polylines)
         if(feature_recovery_detail::closest_on_polyline(pts, m).squared_distance <= r2) { near = true; break; }
-      }
       if(!near) ++far;
     }
     return off_two > 0 && double(far) <= far_allowed;
