@@ -166,7 +166,7 @@ public:
     res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
     res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
                           ? st.current_error
-                          : relative_surface_error(mesh, st.reference);
+                          : surface_distance(mesh, st.reference, m_s.schedule.surface_check_precision).relative();
     res.time_limit_reached = m_s.time_limit && m_s.time_limit->limit_passed();
     res.interrupted = m_s.time_limit && m_s.time_limit->interrupted();
     res.seconds = seconds_since(start);
@@ -247,7 +247,7 @@ private:
   /// measures the surface error of the current state
   double measure_error(Run_state& st) const
   {
-    st.current_error = scaled_error(st.mesh, st.reference, st.nz);
+    st.current_error = scaled_error(st.mesh, st.reference, st.nz, m_s.schedule.surface_check_precision);
     return st.current_error;
   }
 
@@ -264,7 +264,8 @@ private:
     const Normalization& nz = st.nz;
     st.current_error =
       surface_error_after_change(st.ts->boundary(), before, st.mesh.points, *st.reference_index, error_before * st.diagonal,
-                                 [&nz](const Vec3& p) { return nz.undo(p); }, 1e-4, &st.error_bounds) /
+                                 [&nz](const Vec3& p) { return nz.undo(p); }, m_s.schedule.surface_check_precision,
+                                 &st.error_bounds) /
       st.diagonal;
     st.error_may_be_bound = true;
     return st.current_error;
@@ -272,13 +273,15 @@ private:
 
   /// The MSJ stages, their guard keeping a margin (`msj_guard_margin` of the
   /// tolerance, fine sampling from `msj_dense_sampling`), then the
-  /// restoration at the MSJ reached. If the error measured after them is
-  /// above the tolerance, they run again from where they started with a
-  /// wider margin (`msj_guard_retry_margin`), and the run with the lower
-  /// error is kept. The margin, the fine sampling and the second run apply
-  /// only when the error before the stages is within the tolerance (after an
-  /// untangling that left the boundary off the surface they cannot cause an
-  /// excess, and only hold the stages back). See the manual.
+  /// restoration at the MSJ reached. While the error measured after them is
+  /// above the tolerance, they run again from where they started with the
+  /// guard's bound times `msj_guard_retry_factor`, at most
+  /// `msj_guard_retries` times; the first run within the tolerance is kept,
+  /// or else the one with the lowest error. The margin, the fine sampling and
+  /// the runs again apply only when the error before the stages is within
+  /// the tolerance (after an untangling that left the boundary off the
+  /// surface they cannot cause an excess, and only hold the stages back).
+  /// See the manual.
   void msj_stages_with_retry(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
@@ -291,22 +294,32 @@ private:
       measure_error(st);
     };
     const std::vector<Vec3> before = st.mesh.points;
-    run_msj_stages(within_before ? sc.msj_guard_margin : 1.);
-    if(within_before && st.current_error > m_s.surface_tolerance && !stopped())
+    double margin = within_before ? sc.msj_guard_margin : 1.;
+    run_msj_stages(margin);
+    if(!within_before) return;
+    std::vector<Vec3> best = st.mesh.points;
+    double best_error = st.current_error;
+    for(int retry = 0; retry < sc.msj_guard_retries && best_error > m_s.surface_tolerance && !stopped(); ++retry)
     {
-      const std::vector<Vec3> first = st.mesh.points;
-      const double first_error = st.current_error;
+      margin *= sc.msj_guard_retry_factor;
       report_check(st, "the MSJ stages", "surface error " + std::to_string(st.current_error) +
-                    " above the tolerance; run again with the guard at " + std::to_string(sc.msj_guard_retry_margin) +
-                    " of it (the first run is kept if the second is not better)");
+                    " above the tolerance; run again with the guard at " + std::to_string(margin) +
+                    " of it (an earlier run is kept if this one is not better)");
       st.mesh.points = before;
-      run_msj_stages(sc.msj_guard_retry_margin);
-      if(st.current_error > first_error || stopped())
+      run_msj_stages(margin);
+      if(stopped()) break;
+      if(st.current_error < best_error)
       {
-        st.mesh.points = first;
-        st.current_error = first_error;
-        report_check(st, "the second run of the MSJ stages", stopped() ? "time limit reached" : "surface error not lower");
+        best = st.mesh.points;
+        best_error = st.current_error;
       }
+    }
+    if(st.mesh.points != best || stopped())
+    {
+      st.mesh.points = best;
+      st.current_error = best_error;
+      report_check(st, "the runs again of the MSJ stages",
+                   stopped() ? "time limit reached" : "the run with the lowest surface error kept");
     }
   }
 
@@ -659,12 +672,14 @@ private:
 
   static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-  /// surface error of the normalised mesh against the model-space reference
-  static double scaled_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference, const Normalization& nz)
+  /// surface error of the normalised mesh against the model-space reference,
+  /// to `precision` (relative to the reference's diagonal)
+  static double scaled_error(const Hex_mesh_arrays& mesh, const Triangle_surface& reference, const Normalization& nz,
+                             double precision)
   {
     Hex_mesh_arrays m = mesh;
     for(Vec3& p : m.points) p = nz.undo(p);
-    return relative_surface_error(m, reference);
+    return surface_distance(m, reference, precision).relative();
   }
 
   /// The pull-back, when the boundary is off the target surface by more
