@@ -261,12 +261,8 @@ private:
     // stops at the first edge past the fraction allowed off the creases
     const double far_allowed = (1. - param_.topological_agreement) * double(off_two);
     const double r2 = CGAL::square(param_.match_radius * h_);
-    std::vector<std::vector<Vec3>> polylines; // the curves, a closed one with its first point repeated
-    for(const Reference_feature_curve& c : rf.curves)
-    {
-      polylines.push_back(c.points);
-      if(c.closed && !c.points.empty()) polylines.back().push_back(c.points.front());
-    }
+    std::vector<std::vector<Vec3>> polylines;
+    for(const Reference_feature_curve& c : rf.curves) polylines.push_back(c.polyline());
     for(std::size_t e = 0; e < b_.edges.size() && double(far) <= far_allowed; ++e)
     {
       if(on_two_hexes(e)) continue;
@@ -400,12 +396,11 @@ private:
   bool recover_curve(const Reference_feature_curve& curve, const std::vector<std::size_t>& corner_vertex)
   {
     using namespace feature_recovery_detail;
-    std::vector<Vec3> pts = curve.points;
+    const std::vector<Vec3> pts = curve.polyline();
     std::size_t from = npos, to = npos;
     const bool sharp = r_.topological && curve.normal_turn > param_.topological_crease_turn;
     if(curve.closed)
     {
-      pts.push_back(pts.front());
       from = to = nearest_free_vertex(pts.front());
       if(from != npos) place(from, pts.front());
     }

@@ -70,6 +70,13 @@ struct Reference_feature_curve
   /// the mean angle, in degrees, between the normals of its two sides
   /// (180° − the dihedral angle; 0 along a border)
   double normal_turn = 0.;
+  /// its points as a polyline: a closed curve with its first point repeated at the end
+  std::vector<Vec3> polyline() const
+  {
+    std::vector<Vec3> p = points;
+    if(closed && !p.empty()) p.push_back(p.front());
+    return p;
+  }
 };
 
 struct Reference_features

@@ -783,11 +783,7 @@ private:
     }, 256);
     omega_ = smoothed_around_features(P, rec.placed);
     reference_creases_.clear();
-    for(const Reference_feature_curve& c : rf.curves)
-    {
-      reference_creases_.push_back(c.points);
-      if(c.closed && !c.points.empty()) reference_creases_.back().push_back(c.points.front());
-    }
+    for(const Reference_feature_curve& c : rf.curves) reference_creases_.push_back(c.polyline());
 
     sharp_edge_ = rec.sharp_edge;
     std::vector<std::size_t> degree;
