@@ -21,6 +21,7 @@ if(NOT EXISTS ${SHARED_DATA}/stress-base/fandisk.vtk OR NOT EXISTS ${SHARED_DATA
 endif()
 
 include(${CMAKE_CURRENT_LIST_DIR}/test_check.cmake) # check()
+include(${CMAKE_CURRENT_LIST_DIR}/stress_runs_tsv.cmake) # read_stress_runs()
 
 set(tolerance 0.005)
 set(paper_fandisk_msj 0.752)
@@ -53,17 +54,14 @@ foreach(mesh fandisk hanger)
           above EQUAL runs)
   endforeach()
 
-  # the runs at full precision: input reference amplitude inverted_in inverted_out msj_out asj_out surface_error seconds
-  file(STRINGS ${dir}/stress_runs.tsv lines)
+  # the runs at full precision
+  read_stress_runs(${dir}/stress_runs.tsv run)
+  check("${mesh}: 10 runs in stress_runs.tsv (got ${run_count})" run_count EQUAL 10)
   set(all_vertex_runs 0)
-  foreach(line IN LISTS lines)
-    if(line MATCHES "^input\t")
-      continue()
-    endif()
-    string(REPLACE "\t" ";" fields "${line}")
-    list(GET fields 0 input)
-    list(GET fields 5 msj_out)
-    list(GET fields 7 surface_error)
+  foreach(k IN LISTS run_indices)
+    set(input ${run_${k}_input})
+    set(msj_out ${run_${k}_msj_out})
+    set(surface_error ${run_${k}_surface_error})
     check("${input}: surface error ${surface_error} within the tolerance ${tolerance}"
           surface_error LESS_EQUAL tolerance)
     if(mesh STREQUAL "fandisk" AND input MATCHES "_all_seed")
