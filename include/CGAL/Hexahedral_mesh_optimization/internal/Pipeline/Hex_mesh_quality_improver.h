@@ -299,8 +299,10 @@ private:
     if(!within_before) return;
     std::vector<Vec3> best = st.mesh.points;
     double best_error = st.current_error;
+    bool ran_again = false;
     for(int retry = 0; retry < sc.msj_guard_retries && best_error > m_s.surface_tolerance && !stopped(); ++retry)
     {
+      ran_again = true;
       margin *= sc.msj_guard_retry_factor;
       report_check(st, "the MSJ stages", "surface error " + std::to_string(st.current_error) +
                     " above the tolerance; run again with the guard at " + std::to_string(margin) +
@@ -314,7 +316,7 @@ private:
         best_error = st.current_error;
       }
     }
-    if(st.mesh.points != best || stopped())
+    if(ran_again && (st.mesh.points != best || stopped()))
     {
       st.mesh.points = best;
       st.current_error = best_error;
