@@ -296,29 +296,30 @@ private:
     const std::vector<Vec3> before = st.mesh.points;
     double margin = within_before ? sc.msj_guard_margin : 1.;
     run_msj_stages(margin);
-    if(!within_before) return;
+    if(!within_before || st.current_error <= m_s.surface_tolerance || stopped()) return;
+    // runs again: `best` is the run with the lowest error so far (the state
+    // in `st.mesh` when `best_is_current`)
     std::vector<Vec3> best = st.mesh.points;
     double best_error = st.current_error;
-    bool ran_again = false;
+    bool best_is_current = true;
     for(int retry = 0; retry < sc.msj_guard_retries && best_error > m_s.surface_tolerance && !stopped(); ++retry)
     {
-      ran_again = true;
       margin *= sc.msj_guard_retry_factor;
       report_check(st, "the MSJ stages", "surface error " + std::to_string(st.current_error) +
                     " above the tolerance; run again with the guard at " + std::to_string(margin) +
                     " of it (an earlier run is kept if this one is not better)");
       st.mesh.points = before;
       run_msj_stages(margin);
-      if(stopped()) break;
-      if(st.current_error < best_error)
+      best_is_current = !stopped() && st.current_error < best_error;
+      if(best_is_current)
       {
         best = st.mesh.points;
         best_error = st.current_error;
       }
     }
-    if(ran_again && (st.mesh.points != best || stopped()))
+    if(!best_is_current)
     {
-      st.mesh.points = best;
+      st.mesh.points = std::move(best);
       st.current_error = best_error;
       report_check(st, "the runs again of the MSJ stages",
                    stopped() ? "time limit reached" : "the run with the lowest surface error kept");
