@@ -112,6 +112,7 @@
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Refinement_hierarchy.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/hex_mesh_quality.h>
 #include <CGAL/hex_mesh_surface_error.h>
@@ -142,7 +143,6 @@
 #include <random>
 #include <sstream>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <sys/resource.h>
@@ -416,95 +416,16 @@ static Mesh make_grid(std::size_t n, double fraction_inverted, unsigned seed, st
   return m;
 }
 
-struct Index_array_hash
-{
-  template <std::size_t N>
-  std::size_t operator()(const std::array<std::size_t, N>& a) const
-  {
-    std::uint64_t h = 0;
-    for(std::size_t v : a)
-    {
-      h = (h ^ std::uint64_t(v)) * 0x9e3779b97f4a7c15ull;
-      h ^= h >> 29;
-    }
-    return std::size_t(h);
-  }
-};
-
-/// Every hex split into 8 by its edge midpoints, face centres and centre (the
-/// images of the parameters 0, 1/2, 1 under its trilinear map), each child in
-/// its parent's frame, so orientation is kept. The new vertices shared by
-/// several hexes are made once: edge midpoints keyed by the sorted vertex
-/// pair, face centres by the sorted 4-tuple. The input's points keep their
-/// indices; only points and hexahedra are produced (no MEDIT boundary
-/// entities).
+/// every hex split into 8 (`HMO::internal::refine_1_to_8`: the input's
+/// points keep their indices; only points and hexahedra are produced, no
+/// MEDIT boundary entities)
 static Mesh refine_1_to_8(const Mesh& in)
 {
+  const HMO::internal::Hex_mesh_arrays r = HMO::internal::refine_1_to_8(HMO::internal::make_hex_mesh_arrays(in, K()));
   Mesh out;
-  out.points = in.points;
-  out.hexahedra.reserve(8 * in.hexahedra.size());
-  std::unordered_map<std::array<std::size_t, 2>, std::size_t, Index_array_hash> edge_midpoint;
-  std::unordered_map<std::array<std::size_t, 4>, std::size_t, Index_array_hash> face_centre;
-  edge_midpoint.reserve(4 * in.hexahedra.size());
-  face_centre.reserve(4 * in.hexahedra.size());
-  for(const auto& h : in.hexahedra)
-  {
-    std::size_t node[3][3][3]; // lattice (0, 1/2, 1)^3 of the hex's frame
-    for(int a = 0; a < 3; ++a)
-      for(int b = 0; b < 3; ++b)
-        for(int c = 0; c < 3; ++c)
-        {
-          const int abc[3] = {a, b, c};
-          std::array<std::size_t, 8> corners;
-          std::size_t count = 0;
-          for(int q = 0; q < 8; ++q)
-          {
-            bool in_span = true;
-            for(int t = 0; t < 3; ++t)
-              if(abc[t] != 1 && abc[t] != 2 * hex_corner[q][t]) in_span = false;
-            if(in_span) corners[count++] = h[q];
-          }
-          const auto new_point = [&]() {
-            double x = 0., y = 0., z = 0.;
-            for(std::size_t q = 0; q < count; ++q)
-            {
-              const K::Point_3& p = in.points[corners[q]];
-              x += p.x();
-              y += p.y();
-              z += p.z();
-            }
-            out.points.push_back(K::Point_3(x / double(count), y / double(count), z / double(count)));
-            return out.points.size() - 1;
-          };
-          std::size_t& v = node[a][b][c];
-          if(count == 1)
-            v = corners[0];
-          else if(count == 2)
-          {
-            std::array<std::size_t, 2> key = {{(std::min)(corners[0], corners[1]), (std::max)(corners[0], corners[1])}};
-            const auto it = edge_midpoint.find(key);
-            v = it != edge_midpoint.end() ? it->second : (edge_midpoint[key] = new_point());
-          }
-          else if(count == 4)
-          {
-            std::array<std::size_t, 4> key = {{corners[0], corners[1], corners[2], corners[3]}};
-            std::sort(key.begin(), key.end());
-            const auto it = face_centre.find(key);
-            v = it != face_centre.end() ? it->second : (face_centre[key] = new_point());
-          }
-          else
-            v = new_point();
-        }
-    for(int a = 0; a < 2; ++a)
-      for(int b = 0; b < 2; ++b)
-        for(int c = 0; c < 2; ++c)
-        {
-          Mesh::Hexahedron child;
-          for(int q = 0; q < 8; ++q)
-            child[q] = node[a + hex_corner[q][0]][b + hex_corner[q][1]][c + hex_corner[q][2]];
-          out.hexahedra.push_back(child);
-        }
-  }
+  out.points.reserve(r.points.size());
+  for(const HMO::internal::Vec3& p : r.points) out.points.push_back(K::Point_3(p[0], p[1], p[2]));
+  out.hexahedra.assign(r.hexes.begin(), r.hexes.end());
   return out;
 }
 
