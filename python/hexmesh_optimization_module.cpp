@@ -258,7 +258,7 @@ struct Options
   int local_iterations, number_of_iterations;
   bool barrier_fallback;
   double target_msj, surface_tolerance, crease_seed_angle, turn_focus_band;
-  bool pull_back, asj_smoothing, edge_angle_stages;
+  bool pull_back, asj_smoothing, edge_angle_stages, coarse_level_start;
   HMO::Method method = HMO::Method::package;
   double time_limit = std::numeric_limits<double>::infinity();
   int threads = 0;
@@ -285,6 +285,7 @@ struct Options
     pull_back = q.pull_back;
     asj_smoothing = q.asj_smoothing;
     edge_angle_stages = q.schedule.msj_stage_edge_angle_passes > 0;
+    coarse_level_start = q.schedule.coarse_level_start;
     crease_seed_angle = q.schedule.crease_seed_angle;
     turn_focus_band = q.schedule.turn_focus_band;
   }
@@ -305,7 +306,7 @@ const std::set<std::string>& accepted_options(Function f)
                                               "surface_tolerance", "method", "time_limit", "threads"};
   static const std::set<std::string> quality = [] {
     std::set<std::string> s = untangle;
-    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "crease_seed_angle", "turn_focus_band"});
+    s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "coarse_level_start", "crease_seed_angle", "turn_focus_band"});
     return s;
   }();
   return f == Function::untangle ? untangle : quality;
@@ -343,7 +344,7 @@ Options read_options(Function f, const py::kwargs& kwargs)
 {
   Options o;
   const std::set<std::string>& accepted = accepted_options(f);
-  bool edge_angle_given = false;
+  bool edge_angle_given = false, coarse_level_given = false;
   for(const auto& item : kwargs)
   {
     const std::string name = py::str(item.first);
@@ -370,6 +371,7 @@ Options read_options(Function f, const py::kwargs& kwargs)
     else if(name == "pull_back") o.pull_back = boolean(name, v);
     else if(name == "asj_smoothing") o.asj_smoothing = boolean(name, v);
     else if(name == "edge_angle_stages") { o.edge_angle_stages = boolean(name, v); edge_angle_given = true; }
+    else if(name == "coarse_level_start") { o.coarse_level_start = boolean(name, v); coarse_level_given = true; }
     else if(name == "time_limit") { if(!v.is_none()) o.time_limit = finite_number(name, v, 0., 1e9); }
     else if(name == "threads") o.threads = whole_number(name, v, 0);
     else if(name == "method")
@@ -382,6 +384,7 @@ Options read_options(Function f, const py::kwargs& kwargs)
   }
   // as in the library: the paper's method runs the edge-angle optimiser in its MSJ stages
   if(!edge_angle_given) o.edge_angle_stages = o.method == HMO::Method::paper;
+  if(!coarse_level_given) o.coarse_level_start = o.method != HMO::Method::paper;
   return o;
 }
 
@@ -552,11 +555,12 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                   HP::pull_back(o.pull_back,
                   HP::asj_smoothing(o.asj_smoothing,
                   HP::edge_angle_stages(o.edge_angle_stages,
+                  HP::coarse_level_start(o.coarse_level_start,
                   HP::method(o.method,
                   HP::time_limit(o.time_limit,
                   HP::stop_flag(&stop,
                   CGAL::parameters::number_of_iterations(o.number_of_iterations)
-                                    .visitor(std::ref(visitor))))))))))))))))))));
+                                    .visitor(std::ref(visitor)))))))))))))))))))));
   HMO::Optimization_result r;
   {
     py::gil_scoped_release no_gil;
@@ -612,7 +616,7 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +
-    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, crease_seed_angle,\n"
+    ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, coarse_level_start, crease_seed_angle,\n"
     "turn_focus_band.\n";
   const std::string common =
     "reference: None (the input boundary), a path to a surface (OBJ, OFF, STL, PLY) or a pair\n"

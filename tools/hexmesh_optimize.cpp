@@ -199,9 +199,10 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
             HP::surface_tolerance(options.surface_tolerance,
             HP::asj_smoothing(options.asj_smoothing,
             HP::pull_back(options.pull_back,
+            HP::coarse_level_start(options.coarse_level,
             HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                             : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor))))))))))))));
+            CGAL::parameters::visitor(std::ref(visitor)))))))))))))));
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {

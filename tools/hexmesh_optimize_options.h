@@ -43,6 +43,7 @@ struct Hexmesh_optimize_options
   int threads = 0;                ///< --threads N; 0: every core
   bool asj_smoothing = true;      ///< --no-asj
   bool pull_back = true;          ///< --no-pull-back
+  bool coarse_level = true;       ///< --no-coarse-level
   bool relax_surface = true;      ///< --frozen-surface
   bool check = false;             ///< --check: TetGen reference-volume check of the output
   std::size_t worst = 0;          ///< --worst N: list the N worst elements; 0: none
@@ -188,6 +189,9 @@ inline const std::vector<Option_spec>& option_table()
     {"--no-asj", nullptr,
      "skip the final smoothing of the average scaled Jacobian",
      [](O& o, const std::string&, std::string&) { o.asj_smoothing = false; return true; }},
+    {"--no-coarse-level", nullptr,
+     "do not optimise a mesh recognised as a 1->8 refinement at its coarse level first",
+     [](O& o, const std::string&, std::string&) { o.coarse_level = false; return true; }},
     {"--check", nullptr,
      "check the output against the reference volume (TetGen): volume, boundary self-intersection, "
      "vertices outside; exit status 3 when the check fails",

@@ -7,6 +7,7 @@
 #define CGAL_IMPROVE_HEX_MESH_QUALITY_H
 
 #include <CGAL/untangle_hex_mesh.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Coarse_level_start.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Hex_mesh_quality_improver.h>
 
 namespace CGAL {
@@ -31,6 +32,8 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
     s.schedule.msj_stage_edge_angle_passes = Optimization_schedule::paper_msj_stage_edge_angle_passes;
   else
     s.schedule.msj_stage_edge_angle_passes = 0;
+  s.schedule.coarse_level_start =
+    choose_parameter(get_parameter(np, hex_mesh_internal_np::coarse_level_start), s.schedule.coarse_level_start);
   s.sharp_angle = u.sharp_angle;
   s.reference_feature_angle = u.reference_feature_angle;
   s.schedule.crease_seed_angle = checked_parameter(
@@ -64,6 +67,22 @@ inline void append_run(Optimization_result& first, const Optimization_result& la
   first.certificate = later.certificate;
   first.time_limit_reached = first.time_limit_reached || later.time_limit_reached;
   first.interrupted = first.interrupted || later.interrupted;
+}
+
+/// The coarse level's stages and time put before those of the fine level's
+/// run `q`; when the fine level started from the coarse level's result
+/// (`used`), `q`'s "before" figures become the input's
+inline void merge_coarse_level(const Optimization_result& coarse, bool used, Optimization_result& q)
+{
+  q.stages.insert(q.stages.begin(), coarse.stages.begin(), coarse.stages.end());
+  q.seconds += coarse.seconds;
+  q.time_limit_reached = q.time_limit_reached || coarse.time_limit_reached;
+  q.interrupted = q.interrupted || coarse.interrupted;
+  if(!used) return;
+  q.inverted_before = coarse.inverted_before;
+  q.msj_before = coarse.msj_before;
+  q.asj_before = coarse.asj_before;
+  q.kept_input = false; // the fine level's input was the start, not the mesh given
 }
 
 /// Untangling and improvement interleaved: while elements are still inverted
@@ -139,8 +158,16 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
     Hex_mesh_untangler<Visitor> untangler(u, visitor);
     result = untangler.run(arrays, false); // the improver measures the surface error
   }
-  Hex_mesh_quality_improver<Visitor> improver(s, visitor);
+  // a valid refined mesh: its coarse level first (Coarse_level_start.h)
+  std::vector<Vec3> boundary_points;
+  std::vector<Tri> boundary_triangles;
+  Quality_settings fine_settings;
+  Optimization_result coarse;
+  const bool coarse_start = !untangle && coarse_level_start(arrays, s, visitor, boundary_points, boundary_triangles,
+                                                            fine_settings, coarse);
+  Hex_mesh_quality_improver<Visitor> improver(coarse_start ? fine_settings : s, visitor);
   Optimization_result q = improver.run(arrays, original);
+  if(!coarse.stages.empty()) merge_coarse_level(coarse, coarse_start, q);
   if(untangle) untangle_and_improve_again(arrays, original, u, s, visitor, q);
   if(untangle) append_run(result, q);
   else result = q;
@@ -160,6 +187,11 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
 stages, then its average (ASJ), keeping the boundary on a reference surface.
 
 Sections 3.3 and 3.4 of Xu & Chen (2018) and the final smoothing:
+- a mesh without inverted elements that its connectivity shows to be a 1→8
+  refinement (every hex split into 8, once or more) is optimised at its
+  coarsest level of at least 4096 hexes first, and the stages below start
+  from its displacement carried down trilinearly (not with `Method::paper`;
+  see the manual, "Coarse-level start");
 - when the boundary is farther from the reference than `surface_tolerance`
   (after an untangling that relaxed it), an inversion-free pull-back brings it
   back (SLIM on the 9 Jacobian samples of each hex, flip-avoiding line search);
@@ -241,6 +273,11 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance (its result is kept only if it lowers the surface error)}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`}
+  \cgalParamNEnd
+  \cgalParamNBegin{coarse_level_start}
+    \cgalParamDescription{whether a mesh without inverted elements that its connectivity shows to be a 1→8 refinement (every hex split into 8, once or more) is optimised at its coarsest level of at least 4096 hexes first, the stages then starting from that level's displacement carried down trilinearly (fertility_gregson11 refined twice: MSJ 0.762 instead of 0.607; see the manual)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`true`, `false` with `Method::paper`}
   \cgalParamNEnd
   \cgalParamNBegin{asj_smoothing}
     \cgalParamDescription{whether the ASJ smoothing runs: at the end, and in turn with the MSJ stages while that raises the MSJ}

@@ -255,6 +255,10 @@ def test_options_are_checked():
         hmo.optimize(points, hexes, surface_tolerance=-1)
     with pytest.raises(TypeError, match="pull_back"):
         hmo.optimize(points, hexes, pull_back="yes")
+    with pytest.raises(TypeError, match="coarse_level_start"):
+        hmo.optimize(points, hexes, coarse_level_start="yes")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'coarse_level_start'"):
+        hmo.untangle(points, hexes, coarse_level_start=False)
     with pytest.raises(TypeError, match="progress"):
         hmo.optimize(points, hexes, progress=3)
 

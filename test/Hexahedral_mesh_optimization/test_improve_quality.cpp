@@ -499,6 +499,100 @@ static void test_properties()
             << " inverted left in all; " << kept << " returned their input" << std::endl;
 }
 
+/// A cylinder (27 hexes, twisted) refined twice: the refinement is
+/// recognised from the connectivity alone, both levels, with the coarse
+/// hexes those refined (same corners, same orientation); carried down,
+/// positions give the refinement's points; meshes that are no refinement
+/// are not recognised. Then the coarse-level start of the quality stages
+/// moves a valid refined mesh (a bent grid) to a start of higher MSJ.
+static void test_coarse_level_start()
+{
+  namespace I = HMO::internal;
+  I::Hex_mesh_arrays m = hmo_test::cylinder(3, 3, 1.5);
+  for(I::Vec3& p : m.points) // a twist about the axis, growing with the height
+  {
+    const double a = 0.5 * p[2], x = p[0], y = p[1];
+    p[0] = std::cos(a) * x - std::sin(a) * y;
+    p[1] = std::sin(a) * x + std::cos(a) * y;
+  }
+  const I::Hex_mesh_arrays r1 = I::refine_1_to_8(m), r2 = I::refine_1_to_8(r1);
+  HMO_CHECK(r2.hexes.size() == 8 * 8 * 27);
+
+  I::Refinement_level l1, l0;
+  HMO_CHECK(I::recognise_refinement(r2, l1));
+  HMO_CHECK(l1.coarse.hexes.size() == r1.hexes.size());
+  HMO_CHECK(I::recognise_refinement(l1.coarse, l0));
+  HMO_CHECK(l0.coarse.hexes.size() == m.hexes.size());
+  // the coarse hexes are r1's (the refinement keeps the coarse points'
+  // indices), up to a rotation: the same vertex sets and scaled Jacobians
+  std::map<std::array<std::size_t, 8>, double> r1_sj;
+  for(std::size_t h = 0; h < r1.hexes.size(); ++h)
+  {
+    std::array<std::size_t, 8> key = r1.hexes[h];
+    std::sort(key.begin(), key.end());
+    r1_sj[key] = I::scaled_jacobian(r1.corners(h));
+  }
+  std::size_t matched = 0;
+  for(std::size_t h = 0; h < l1.coarse.hexes.size(); ++h)
+  {
+    std::array<std::size_t, 8> key;
+    for(int q = 0; q < 8; ++q) key[q] = l1.coarse_to_fine[l1.coarse.hexes[h][q]];
+    std::sort(key.begin(), key.end());
+    const auto it = r1_sj.find(key);
+    if(it != r1_sj.end() && std::abs(it->second - I::scaled_jacobian(l1.coarse.corners(h))) < 1e-12) ++matched;
+  }
+  HMO_CHECK(matched == r1.hexes.size());
+  // positions carried down two levels are the refinement's points
+  std::vector<I::Vec3> fine = I::prolongate(l1, I::prolongate(l0, l0.coarse.points));
+  double worst = 0.;
+  for(std::size_t v = 0; v < fine.size(); ++v) worst = (std::max)(worst, I::norm(I::operator-(fine[v], r2.points[v])));
+  HMO_CHECK(fine.size() == r2.points.size() && worst < 1e-12);
+  // no refinement: the original 27 hexes, a 3×4×4 grid, and a refined mesh
+  // with one hex split along a face (its children no longer 8 around a centre)
+  I::Refinement_level none;
+  HMO_CHECK(!I::recognise_refinement(m, none));
+  HMO_CHECK(!I::recognise_refinement(hmo_test::grid(3, 4, 4), none));
+  I::Hex_mesh_arrays broken = r1;
+  std::swap(broken.hexes[0][0], broken.hexes[0][1]);
+  HMO_CHECK(!I::recognise_refinement(broken, none));
+
+  // the start, on a 4×4×4 grid whose interior is bent (a smooth shift, zero
+  // on the boundary) refined twice, the schedule's size floor lowered to it
+  I::Hex_mesh_arrays bent = hmo_test::grid(4, 4, 4);
+  for(I::Vec3& p : bent.points)
+  {
+    const double w = 0.2 * std::sin(CGAL_PI * p[0]) * std::sin(CGAL_PI * p[1]) * std::sin(CGAL_PI * p[2]);
+    p[0] += w;
+    p[1] += 0.5 * w;
+  }
+  const I::Hex_mesh_arrays bent2 = I::refine_1_to_8(I::refine_1_to_8(bent));
+  I::Quality_settings s;
+  s.schedule.coarse_level_min_hexes = 8;
+  I::Hex_mesh_arrays mesh = bent2;
+  const double msj_in = I::quality_statistics(mesh).msj;
+  std::vector<I::Vec3> points;
+  std::vector<I::Tri> triangles;
+  I::Quality_settings fine_settings;
+  HMO::Optimization_result res;
+  Recorder rec;
+  const bool used = I::coarse_level_start(mesh, s, rec, points, triangles, fine_settings, res);
+  HMO_CHECK(used);
+  HMO_CHECK(!res.stages.empty() && res.stages.back().name == "coarse level");
+  HMO_CHECK(res.msj_before == msj_in);
+  const I::Quality_statistics q = I::quality_statistics(mesh);
+  HMO_CHECK(q.inverted == 0 && q.msj > msj_in + 0.05);
+  HMO_CHECK(fine_settings.reference_points == &points && !triangles.empty());
+  std::cout << "coarse-level start on the bent grid refined twice: MSJ " << msj_in << " -> " << q.msj
+            << (res.stages.empty() ? std::string() : " (" + res.stages.back().details + ")") << std::endl;
+  // the paper's schedule has no such start
+  I::Quality_settings paper = s;
+  paper.schedule = I::Optimization_schedule::paper();
+  I::Hex_mesh_arrays untouched = bent2;
+  HMO::Optimization_result none_result;
+  HMO_CHECK(!I::coarse_level_start(untouched, paper, rec, points, triangles, fine_settings, none_result));
+  HMO_CHECK(untouched.points == bent2.points && none_result.stages.empty());
+}
+
 int main(int, char** argv)
 {
   test_properties();
@@ -510,5 +604,6 @@ int main(int, char** argv)
   test_pipeline_on_tangled_mesh();
   test_paper_method();
   test_lcc();
+  test_coarse_level_start();
   return hmo_test::report(argv[0]);
 }

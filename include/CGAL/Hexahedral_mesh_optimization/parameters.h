@@ -56,6 +56,7 @@ enum target_msj_t { target_msj };
 enum surface_tolerance_t { surface_tolerance };
 enum pull_back_t { pull_back };
 enum asj_smoothing_t { asj_smoothing };
+enum coarse_level_start_t { coarse_level_start };
 enum edge_angle_stages_t { edge_angle_stages };
 enum method_t { method };
 enum volume_tolerance_t { volume_tolerance };
@@ -125,6 +126,9 @@ CGAL_HMO_ADD_PARAMETER(surface_tolerance)
 CGAL_HMO_ADD_PARAMETER(pull_back)
 /// whether the final ASJ smoothing runs (default true)
 CGAL_HMO_ADD_PARAMETER(asj_smoothing)
+/// whether a valid mesh recognised as a 1→8 refinement is optimised at a
+/// coarse level first (default true, false with `Method::paper`)
+CGAL_HMO_ADD_PARAMETER(coarse_level_start)
 /// whether each MSJ stage runs the paper's edge-angle optimiser where the
 /// max-min smoothing falls short (default: false, true with `Method::paper`)
 CGAL_HMO_ADD_PARAMETER(edge_angle_stages)

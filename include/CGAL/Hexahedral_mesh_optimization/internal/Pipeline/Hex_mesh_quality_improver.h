@@ -91,6 +91,11 @@ struct Quality_settings
   const Time_limit* time_limit = nullptr;
   /// work caps and convergence thresholds of every stage
   Optimization_schedule schedule;
+  /// whether the surface restoration runs before the MSJ stages too (not
+  /// after a coarse-level start, whose boundary is where the coarse level
+  /// put it, within the tolerance: on the twice-refined fertility that
+  /// restoration moved no boundary vertex in 8 sweeps of 29 s)
+  bool restore_before_msj_stages = true;
   /// optional reference surface (model coordinates); default: the boundary of `original`
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
@@ -154,7 +159,7 @@ public:
     if(m_s.pull_back && !stopped()) pull_back_stage(st); // around what is inverted, if anything (see Pull_back.h)
     if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
     if(!stopped()) surface_guard_set_up(st, original);
-    if(!stopped() && restoration_stage(st) > 0) st.current_error = -1.;
+    if(m_s.restore_before_msj_stages && !stopped() && restoration_stage(st) > 0) st.current_error = -1.;
     if(!stopped()) msj_stages_with_retry(st);
     if(m_s.asj_smoothing && !stopped()) turns(st);
     if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
