@@ -258,10 +258,12 @@ private:
   const std::vector<std::size_t>& vh_;
 };
 
-/// the coarse hex around cell centre `centre`, its corners ordered in the
-/// frame of its first child h0: child h' lies in the octant that differs
-/// from h0's along the axes on which all the vertices h0 and h' share agree
-/// (a face: one axis, an edge: two, the centre alone: three)
+/// the coarse hex of the 8 children `children_begin[0 .. 8)` around a cell
+/// centre, its corners (fine indices) ordered in the frame of the first
+/// child h0: child h' lies in the octant that differs from h0's along the
+/// axes on which all the vertices h0 and h' share agree (a face: one axis,
+/// an edge: two, the centre alone: three); false if two children claim the
+/// same octant or two corners coincide
 inline bool coarse_hex_around(const Hex_mesh_arrays& m, const Labelling& l, const std::size_t* children_begin,
                               Hex& coarse_hex)
 {
@@ -295,7 +297,7 @@ inline bool coarse_hex_around(const Hex_mesh_arrays& m, const Labelling& l, cons
 /// Recognises `fine` as the 1→8 refinement of a coarser mesh, from its
 /// connectivity alone (the points are not read): on success fills `level`
 /// and returns true. A mesh whose hexes are not all reached from the seed
-/// through shared faces (several components) is not recognised.
+/// (several components), or with vertices in no hex, is not recognised.
 inline bool recognise_refinement(const Hex_mesh_arrays& fine, Refinement_level& level)
 {
   using namespace refinement_detail;
