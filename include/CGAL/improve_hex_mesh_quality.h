@@ -69,22 +69,6 @@ inline void append_run(Optimization_result& first, const Optimization_result& la
   first.interrupted = first.interrupted || later.interrupted;
 }
 
-/// The coarse level's stages and time put before those of the fine level's
-/// run `q`; when the fine level started from the coarse level's result
-/// (`used`), `q`'s "before" figures become the input's
-inline void merge_coarse_level(const Optimization_result& coarse, bool used, Optimization_result& q)
-{
-  q.stages.insert(q.stages.begin(), coarse.stages.begin(), coarse.stages.end());
-  q.seconds += coarse.seconds;
-  q.time_limit_reached = q.time_limit_reached || coarse.time_limit_reached;
-  q.interrupted = q.interrupted || coarse.interrupted;
-  if(!used) return;
-  q.inverted_before = coarse.inverted_before;
-  q.msj_before = coarse.msj_before;
-  q.asj_before = coarse.asj_before;
-  q.kept_input = false; // the fine level's input was the start, not the mesh given
-}
-
 /// Untangling and improvement interleaved: while elements are still inverted
 /// after the quality stages (at most `untangle_again_rounds` times), the
 /// untangler runs again on what they left, its boundary now pulled back
@@ -167,7 +151,11 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
                                                             fine_settings, coarse);
   Hex_mesh_quality_improver<Visitor> improver(coarse_start ? fine_settings : s, visitor);
   Optimization_result q = improver.run(arrays, original);
-  if(!coarse.stages.empty()) merge_coarse_level(coarse, coarse_start, q);
+  if(!coarse.stages.empty()) // the coarse level's stages first, the input's "before" figures
+  {
+    append_run(coarse, q);
+    q = std::move(coarse);
+  }
   if(untangle) untangle_and_improve_again(arrays, original, u, s, visitor, q);
   if(untangle) append_run(result, q);
   else result = q;

@@ -55,7 +55,8 @@ inline std::vector<Refinement_level> coarse_levels(const Hex_mesh_arrays& mesh, 
 /// it), and no surface restoration before the MSJ stages.
 /// `result` receives the coarse level's stages, prefixed "coarse level: ",
 /// a stage "coarse level" that says what was done, and the input's
-/// quality as the "before" figures.
+/// quality as the "before" figures, to be followed by the fine level's run
+/// (`append_run`).
 template <class Visitor>
 bool coarse_level_start(Hex_mesh_arrays& mesh, const Quality_settings& s, Visitor& visitor,
                         std::vector<Vec3>& boundary_points, std::vector<Tri>& boundary_triangles,
@@ -129,6 +130,7 @@ bool coarse_level_start(Hex_mesh_arrays& mesh, const Quality_settings& s, Visito
   result.msj_before = q0.msj;
   result.asj_before = q0.asj;
   result.seconds = sr.seconds;
+  result.kept_input = !used; // the input as it was, unless the start was used (`append_run`)
   result.time_limit_reached = rc.time_limit_reached;
   result.interrupted = rc.interrupted;
   return used;
