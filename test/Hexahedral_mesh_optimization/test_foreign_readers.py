@@ -9,8 +9,9 @@
 #  (b) we read what meshio writes in each of these formats, with the same
 #      points, hexahedra and the groups meshio writes;
 #  (c) gmsh opens our .msh files (and we read what gmsh writes back).
-# usage: test_foreign_readers.py PROBE WORKDIR
-#   PROBE: test_hex_mesh_io, whose --write-samples DIR writes our files and
+# usage: test_foreign_readers.py PROBE... WORKDIR
+#   PROBE...: the command of the test program test_hex_mesh_io (hmo_tests
+#   test_hex_mesh_io), whose --write-samples DIR writes our files and
 #   --dump FILE prints what we read as JSON.
 # Exit 77 (skipped) when meshio is missing; the gmsh part is skipped (with a
 # message) when gmsh is absent.
@@ -28,7 +29,7 @@ except ImportError as e:
     print("skipped: meshio is missing (Debian python3-meshio):", e)
     sys.exit(77)
 
-probe, work = sys.argv[1], sys.argv[2]
+probe, work = sys.argv[1:-1], sys.argv[-1]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 
@@ -45,7 +46,7 @@ def check(condition, message):
 
 def dump(path):
     """the mesh as we read it, or None"""
-    r = subprocess.run([probe, "--dump", path], capture_output=True, text=True)
+    r = subprocess.run(probe + ["--dump", path], capture_output=True, text=True)
     if not check(r.returncode == 0, "we cannot read %s: %s" % (path, r.stderr.strip())):
         return None
     return json.loads(r.stdout)
@@ -62,7 +63,7 @@ def cell_values(mesh, key):
     return np.concatenate([v for v, c in zip(mesh.cell_data[key], mesh.cells) if c.type == "hexahedron"])
 
 
-subprocess.run([probe, "--write-samples", work], check=True)
+subprocess.run(probe + ["--write-samples", work], check=True)
 with open(os.path.join(work, "expected.json")) as f:
     expected = json.load(f)
 with open(os.path.join(work, "expected_exodus.json")) as f:

@@ -20,6 +20,8 @@
 #include <limits>
 #include <vector>
 
+namespace test_pull_back {
+
 namespace HMO = CGAL::Hexahedral_mesh_optimization::internal;
 using HMO::Vec3;
 using HMO::Vertex_class;
@@ -239,13 +241,15 @@ void test_inverted_inside()
   HMO_CHECK(pinned_moved == 0);
 }
 
-int main(int, char** argv)
+HMO_TEST_MAIN(test_pull_back)
 {
-  test_grid(HMO::Pull_back_rest_shape::ideal_cube, 3, "grid 12^3, ideal rest, 3 rings");
-  test_grid(HMO::Pull_back_rest_shape::initial_element, 3, "grid 12^3, initial rest, 3 rings");
-  test_grid(HMO::Pull_back_rest_shape::ideal_cube, -1, "grid 12^3, ideal rest, whole mesh");
-  test_cylinder();
-  test_unreachable();
-  test_inverted_inside();
+  HMO_CASE(test_grid(HMO::Pull_back_rest_shape::ideal_cube, 3, "grid 12^3, ideal rest, 3 rings"));
+  HMO_CASE(test_grid(HMO::Pull_back_rest_shape::initial_element, 3, "grid 12^3, initial rest, 3 rings"));
+  HMO_CASE(test_grid(HMO::Pull_back_rest_shape::ideal_cube, -1, "grid 12^3, ideal rest, whole mesh"));
+  HMO_CASE(test_cylinder());
+  HMO_CASE(test_unreachable());
+  HMO_CASE(test_inverted_inside());
   return hmo_test::report(argv[0]);
 }
+
+} // namespace test_pull_back

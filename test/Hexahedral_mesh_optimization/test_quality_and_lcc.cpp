@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+namespace test_quality_and_lcc {
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
 typedef CGAL::Indexed_hex_mesh<Point> Mesh;
@@ -779,13 +781,15 @@ void test_validity_certificate()
 
 } // namespace
 
-int main()
+HMO_TEST_MAIN(test_quality_and_lcc)
 {
-  test_scaled_jacobian();
-  test_validity_certificate();
-  test_frame_kernel();
-  test_quality_statistics();
-  test_linear_cell_complex();
-  test_shared_meshes();
+  HMO_CASE(test_scaled_jacobian());
+  HMO_CASE(test_validity_certificate());
+  HMO_CASE(test_frame_kernel());
+  HMO_CASE(test_quality_statistics());
+  HMO_CASE(test_linear_cell_complex());
+  HMO_CASE(test_shared_meshes());
   return hmo_test::report("test_quality_and_lcc");
 }
+
+} // namespace test_quality_and_lcc

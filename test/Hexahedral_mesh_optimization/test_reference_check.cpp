@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_reference_check {
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
 typedef CGAL::Surface_mesh<Point> Surface;
@@ -304,18 +306,20 @@ void test_bunny()
   HMO_CHECK(r.relative_max_outside_distance() < 0.05);
 }
 
-int main(int, char** argv)
+HMO_TEST_MAIN(test_reference_check)
 {
   if(!HMO::tetgen_available())
   {
     std::cout << "the package was configured without TetGen: reference checks skipped" << std::endl;
     return 77;
   }
-  test_hex_volume();
-  test_box();
-  test_vertex_outside();
-  test_folded_boundary();
-  test_invalid_references();
-  test_bunny();
+  HMO_CASE(test_hex_volume());
+  HMO_CASE(test_box());
+  HMO_CASE(test_vertex_outside());
+  HMO_CASE(test_folded_boundary());
+  HMO_CASE(test_invalid_references());
+  HMO_CASE(test_bunny());
   return hmo_test::report(argv[0]);
 }
+
+} // namespace test_reference_check

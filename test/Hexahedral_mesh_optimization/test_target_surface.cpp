@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+namespace test_target_surface {
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
 typedef CGAL::Surface_mesh<Point> Surface;
@@ -1204,20 +1206,22 @@ void test_surface_fitting()
   HMO_CHECK(off < 1e-9);
 }
 
-int main(int, char** argv)
+HMO_TEST_MAIN(test_target_surface)
 {
-  test_boundary_extraction();
-  test_features();
-  test_crease_hysteresis();
-  test_feature_recovery();
-  test_constraints();
-  test_surface_error();
-  test_culled_distance();
-  test_straddle_bound();
-  test_surface_error_after_change(1e-4);
-  test_surface_error_after_change(1e-6);
-  test_reference_fit();
-  test_surface_fitting();
-  test_shared_data();
+  HMO_CASE(test_boundary_extraction());
+  HMO_CASE(test_features());
+  HMO_CASE(test_crease_hysteresis());
+  HMO_CASE(test_feature_recovery());
+  HMO_CASE(test_constraints());
+  HMO_CASE(test_surface_error());
+  HMO_CASE(test_culled_distance());
+  HMO_CASE(test_straddle_bound());
+  HMO_CASE(test_surface_error_after_change(1e-4));
+  HMO_CASE(test_surface_error_after_change(1e-6));
+  HMO_CASE(test_reference_fit());
+  HMO_CASE(test_surface_fitting());
+  HMO_CASE(test_shared_data());
   return hmo_test::report(argv[0]);
 }
+
+} // namespace test_target_surface

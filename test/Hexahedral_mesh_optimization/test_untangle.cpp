@@ -27,6 +27,8 @@
 #include <random>
 #include <vector>
 
+namespace test_untangle {
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
 typedef CGAL::Indexed_hex_mesh<Point> Mesh;
@@ -366,12 +368,12 @@ static void test_barrier_energy_gradient()
   HMO_CHECK(with_volume.second - shape.second > with_volume.first - shape.first);
 }
 
-int main(int, char** argv)
+HMO_TEST_MAIN(test_untangle)
 {
-  test_topology_edges();
-  test_barrier_energy_gradient();
-  test_unresolved_elements();
-  test_surface_stage_with_inverted_hex();
+  HMO_CASE(test_topology_edges());
+  HMO_CASE(test_barrier_energy_gradient());
+  HMO_CASE(test_unresolved_elements());
+  HMO_CASE(test_surface_stage_with_inverted_hex());
   // 1. a perturbed 6x6x6 grid with interior vertices pushed across their cells
   {
     Mesh m = grid(6);
@@ -457,3 +459,5 @@ int main(int, char** argv)
   }
   return hmo_test::report(argv[0]);
 }
+
+} // namespace test_untangle

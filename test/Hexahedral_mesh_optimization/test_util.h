@@ -3,18 +3,29 @@
 //
 // Checks that run in every build type (CGAL builds Release, where NDEBUG
 // removes assert). A failed check prints where and what, and the program
-// exits with status 1 at the end.
+// exits with status 1 at the end. The test programs' mains (HMO_TEST_MAIN).
 
 #ifndef HMO_TEST_UTIL_H
 #define HMO_TEST_UTIL_H
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <string>
 #include <sys/stat.h>
 
 namespace hmo_test {
+
+/// whether this is the sanitizer build (HMO_SANITIZED, -DHMO_SANITIZE=ON),
+/// where a run is some 20 times slower: the tests with many or large runs
+/// then take a sample of them (the Release build runs them all)
+#ifdef HMO_SANITIZED
+constexpr bool sanitized = true;
+#else
+constexpr bool sanitized = false;
+#endif
 
 inline int& failures() { static int n = 0; return n; }
 
@@ -45,7 +56,46 @@ inline std::string shared_data_dir()
   return dir;
 }
 
+/// runs one case of a test program and prints its wall time (where a
+/// test's time goes; no check depends on it). With the environment variable
+/// HMO_TEST_CASE set, only the cases whose call starts with it run.
+template <class F>
+void timed_case(const char* what, F f)
+{
+  const char* only = std::getenv("HMO_TEST_CASE");
+  if(only && std::string(what).rfind(only, 0) != 0) return;
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  std::cout << "  [" << what << ": "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s]" << std::endl;
+}
+
+/// The test programs share one executable (test_main.cpp, fewer CGAL
+/// translation units to compile): each registers its main under its name,
+/// and `hmo_tests NAME [ARGS]` runs it with argv[0] = NAME.
+typedef int (*Test_main)(int argc, char** argv);
+
+inline std::map<std::string, Test_main>& test_programs()
+{
+  static std::map<std::string, Test_main> programs;
+  return programs;
+}
+
+struct Test_registration
+{
+  Test_registration(const char* name, Test_main main) { test_programs()[name] = main; }
+};
+
 } // namespace hmo_test
+
+/// `HMO_TEST_MAIN(name) { ... }`: the main of the test program `name`
+#define HMO_TEST_MAIN(name)                                                    \
+  int name##_main(int argc, char** argv);                                      \
+  static const hmo_test::Test_registration name##_registration(#name, &name##_main); \
+  int name##_main([[maybe_unused]] int argc, [[maybe_unused]] char** argv)
+
+/// `HMO_CASE(test_something(args))`: runs the case, timed (`timed_case`)
+#define HMO_CASE(call) hmo_test::timed_case(#call, [&] { call; })
 
 #define HMO_CHECK(cond)                                                        \
   do {                                                                         \
