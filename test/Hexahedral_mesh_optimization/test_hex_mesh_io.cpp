@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Hex mesh I/O and validation: round trips in every format, one bad input
-// per diagnosed problem (message, line, no output file), atomic writes, and
-// every mesh of the shared benchmark data.
+// per diagnosed problem (message, line, no output file), atomic writes, the
+// checks of an output before the work (check_hex_mesh_output), and every
+// mesh of the shared benchmark data.
 
 #include "test_util.h"
 
@@ -23,11 +24,13 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <stdlib.h>  // mkdtemp
+#include <unistd.h>  // access, geteuid
 
 namespace test_hex_mesh_io {
 
@@ -752,6 +755,97 @@ void test_write_failures()
   HMO_CHECK(files_containing(".tmp") == 0);
 }
 
+// ------------------------------------------------- checks before the work
+
+/// the names in folder `dir`
+std::vector<std::string> folder_entries(const std::string& dir)
+{
+  std::vector<std::string> names;
+  for(const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  return names;
+}
+
+/// Issue 48: what can be known about an output is checked before the work
+/// that produces it (the format of the extension, the folder, a file
+/// created there), and the check leaves nothing behind.
+void test_output_checks()
+{
+  using CGAL::IO::Hex_mesh_file_format;
+  // the format of an extension: write_hex_mesh's choice
+  Hex_mesh_file_format f = Hex_mesh_file_format::medit;
+  std::string why;
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("a/b.MSH", f, &why) && f == Hex_mesh_file_format::msh41);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.vtk", f) && f == Hex_mesh_file_format::vtk);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.e", f) && f == Hex_mesh_file_format::exodus);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.Exo", f) && f == Hex_mesh_file_format::exodus);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.mesh", f) && f == Hex_mesh_file_format::medit);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.inp", f) && f == Hex_mesh_file_format::inp);
+  HMO_CHECK(CGAL::IO::hex_mesh_file_format_from_extension("b.vtu", f) && f == Hex_mesh_file_format::vtu);
+  f = Hex_mesh_file_format::inp;
+  HMO_CHECK(!CGAL::IO::hex_mesh_file_format_from_extension("out.txt", f, &why));
+  HMO_CHECK(why == "unknown file extension '.txt': expected .mesh, .vtk, .vtu, .msh, .inp, .exo or .e");
+  HMO_CHECK(f == Hex_mesh_file_format::inp);  // left as it was
+  HMO_CHECK(!CGAL::IO::hex_mesh_file_format_from_extension("dir.vtk/out", f, &why) && contains(why, "no file extension"));
+  HMO_CHECK(!CGAL::IO::hex_mesh_file_format_from_extension("b.meshb", f, &why) && contains(why, ".meshb"));
+  HMO_CHECK(!CGAL::IO::hex_mesh_file_format_from_extension("b.obj", f));  // no message asked for
+
+  // a fresh folder, to see that a check leaves nothing in it
+  const std::string dir = path("probe");
+  std::filesystem::create_directory(dir);
+  const Mesh m = grid_mesh();
+  Hex_mesh_io_error err;
+  const std::string out = dir + "/out.vtk";
+  HMO_CHECK(CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::vtk, out, &err));
+  HMO_CHECK(CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::medit, out, m, &err));
+  HMO_CHECK(folder_entries(dir).empty());
+  // a file already there is left as it was
+  write_text(out, "previous");
+  HMO_CHECK(CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::vtk, out, &err));
+  HMO_CHECK(read_text(out) == "previous" && folder_entries(dir) == std::vector<std::string>{"out.vtk"});
+  std::filesystem::remove(out);
+
+  // a folder that does not exist
+  const std::string nowhere = dir + "/no_such_dir/out.vtk";
+  HMO_CHECK(!CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::vtk, nowhere, &err));
+  HMO_CHECK(err.file == nowhere && err.line == 0);
+  HMO_CHECK(err.message == "its folder '" + dir + "/no_such_dir' does not exist");
+  HMO_CHECK(err.what() == nowhere + ": its folder '" + dir + "/no_such_dir' does not exist");
+  HMO_CHECK(!hmo_test::file_exists(dir + "/no_such_dir"));
+  // a "folder" that is a file
+  write_text(dir + "/plain_file", "x");
+  HMO_CHECK(!CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::inp, dir + "/plain_file/out.inp", &err));
+  HMO_CHECK(err.message == "'" + dir + "/plain_file' is not a folder");
+  std::filesystem::remove(dir + "/plain_file");
+  // the target is a folder (the writers would fail at their final rename)
+  std::filesystem::create_directory(dir + "/a_folder.vtu");
+  HMO_CHECK(!CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::vtu, dir + "/a_folder.vtu", m, &err));
+  HMO_CHECK(err.file == dir + "/a_folder.vtu" && err.message == "is a folder, not a file");
+  std::filesystem::remove(dir + "/a_folder.vtu");
+  // a folder where no file can be created (root may write anywhere: skipped)
+  if(::geteuid() != 0)
+  {
+    std::filesystem::create_directory(dir + "/read_only");
+    std::filesystem::permissions(dir + "/read_only", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    HMO_CHECK(!CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::msh41, dir + "/read_only/out.msh", &err));
+    HMO_CHECK(contains(err.message, "cannot create a temporary file next to the target"));
+    std::filesystem::permissions(dir + "/read_only", std::filesystem::perms::owner_all);
+    HMO_CHECK(folder_entries(dir + "/read_only").empty());
+    std::filesystem::remove(dir + "/read_only");
+  }
+  else
+    std::cout << "  running as root: the check of a read-only folder is skipped" << std::endl;
+  // a name relative to the working folder (its folder is ".")
+  HMO_CHECK(CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::medit, "hmo_probe_check.mesh", &err) ==
+            (::access(".", W_OK) == 0));
+  HMO_CHECK(!hmo_test::file_exists("hmo_probe_check.mesh"));
+  HMO_CHECK(!CGAL::IO::check_hex_mesh_output(Hex_mesh_file_format::medit, "", &err) && err.message == "empty file name");
+
+  // after all of these, the folder is as it was: empty
+  HMO_CHECK(folder_entries(dir).empty());
+  std::filesystem::remove(dir);
+}
+
 // ----------------------------------------------------------------- shared data
 
 void test_shared_data()
@@ -985,10 +1079,58 @@ void test_simulation_round_trips()
     HMO_CHECK(r.hexahedron_references == std::vector<int>({1, 1, 1, 1, 2, 2, 2, 7}));
     HMO_CHECK(r.side_sets.size() == 2 && r.side_sets[1].sides.size() == 1 &&
               r.hexahedra[r.side_sets[1].sides[0].first] == m.hexahedra[7]);
-    Mesh bad = e;
-    bad.hexahedron_references[0] = 0;
-    HMO_CHECK(!CGAL::IO::write_EXODUS(path("bad.exo"), bad, &err));
-    HMO_CHECK(contains(err.message, "element block ids must be positive") && !hmo_test::file_exists(path("bad.exo")));
+    // reference 0 (MEDIT writers often leave it on every hexahedron; issue
+    // 48: refused after the work) is block 1, silently, with its name
+    const CGAL::IO::Hex_mesh_file_format exodus = CGAL::IO::Hex_mesh_file_format::exodus;
+    Mesh zero = e;
+    zero.hexahedron_references.assign(zero.hexahedra.size(), 0);
+    zero.hexahedron_reference_names = {{0, "solid"}};
+    std::vector<std::string> check_warnings;
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(exodus, path("zero.exo"), zero, &err, &check_warnings));
+    HMO_CHECK(check_warnings.empty());
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("zero.exo"), zero, fields, &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("zero.exo"), r, &err));
+    HMO_CHECK(same_volume(zero, r) && r.hexahedron_references == std::vector<int>(zero.hexahedra.size(), 1));
+    HMO_CHECK(r.hexahedron_reference_names == (std::map<int, std::string>{{1, "solid"}}));
+    HMO_CHECK(same_sets(r.vertex_sets, zero.vertex_sets) && same_side_sets(r.side_sets, zero.side_sets));
+    // 0, -3 and 2: distinct positive blocks (2 stays 2, 0 takes 1, -3 the
+    // next free id, 3), names following them, a warning for -3 only; the
+    // references in block order, so that the hexahedra keep theirs
+    Mesh mixed = e;
+    mixed.hexahedron_references = {0, 0, 0, 2, 2, 2, -3, -3};
+    mixed.hexahedron_reference_names = {{0, "zero"}, {2, "two"}, {-3, "minus three"}};
+    check_warnings.clear();
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(exodus, path("mixed.exo"), mixed, &err, &check_warnings));
+    HMO_CHECK(check_warnings.size() == 1 &&
+              check_warnings[0] == "hexahedron reference -3 written as Exodus II element block 3 (block ids must be positive)");
+    HMO_CHECK(CGAL::IO::write_EXODUS(path("mixed.exo"), mixed, &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("mixed.exo"), r, &err));
+    HMO_CHECK(same_volume(mixed, r) && r.hexahedron_references == std::vector<int>({1, 1, 1, 2, 2, 2, 3, 3}));
+    HMO_CHECK(r.hexahedron_reference_names ==
+              (std::map<int, std::string>{{1, "zero"}, {2, "two"}, {3, "minus three"}}));
+    HMO_CHECK(same_side_sets(r.side_sets, mixed.side_sets) && r.hexahedron_ids == mixed.hexahedron_ids);
+    // with 1 taken, 0 is block 2 and warned about too; -1 takes 4 (3 is taken)
+    mixed.hexahedron_references = {1, 1, 0, 0, 3, 3, -1, -1};
+    mixed.hexahedron_reference_names.clear();
+    check_warnings.clear();
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(exodus, path("mixed.exo"), mixed, &err, &check_warnings));
+    HMO_CHECK(check_warnings.size() == 2 && contains(check_warnings[0], "reference 0 written as Exodus II element block 2") &&
+              contains(check_warnings[1], "reference -1 written as Exodus II element block 4"));
+    HMO_CHECK(CGAL::IO::write_EXODUS(path("mixed.exo"), mixed, &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("mixed.exo"), r, &err));
+    HMO_CHECK(r.hexahedron_references == std::vector<int>({1, 1, 2, 2, 3, 3, 4, 4}));
+    // the other formats take any reference: nothing to warn about
+    check_warnings.clear();
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::medit, path("mixed.mesh"), mixed, &err,
+                                              &check_warnings));
+    HMO_CHECK(check_warnings.empty());
+    // ids that do not fit the 32 bits of the writer: refused by the check, before any work
+    Mesh big_ids = e;
+    big_ids.point_ids[3] = 1LL << 40;
+    HMO_CHECK(!CGAL::IO::check_hex_mesh_output(exodus, path("big_ids.exo"), big_ids, &err));
+    HMO_CHECK(err.file == path("big_ids.exo") && contains(err.message, "does not fit the 32-bit ids"));
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::inp, path("big_ids.inp"), big_ids, &err));
+    HMO_CHECK(!hmo_test::file_exists(path("big_ids.exo")) && !hmo_test::file_exists(path("big_ids.inp")));
     // netCDF reads a file cut short as zeros, without an error: the reader
     // checks the size against the variables and the indices against 0
     const std::string exo = read_text(path("grid.exo"));
@@ -1018,6 +1160,9 @@ void test_simulation_round_trips()
 #else
     HMO_CHECK(!written && contains(err.message, "this build has no Exodus II support"));
     HMO_CHECK(!hmo_test::file_exists(path("grid.exo")));
+    // found out before any work
+    HMO_CHECK(!CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::exodus, path("grid.exo"), e, &err));
+    HMO_CHECK(contains(err.message, "this build has no Exodus II support"));
     expect_read_failure(path("grid.exo"), {"this build has no Exodus II support"});
 #endif
   }
@@ -1238,6 +1383,7 @@ HMO_TEST_MAIN(test_hex_mesh_io)
   HMO_CASE(test_vtk_binary_errors());
   HMO_CASE(test_vtu_errors());
   HMO_CASE(test_write_failures());
+  HMO_CASE(test_output_checks());
   HMO_CASE(test_simulation_round_trips());
   HMO_CASE(test_msh_errors());
   HMO_CASE(test_inp_errors());

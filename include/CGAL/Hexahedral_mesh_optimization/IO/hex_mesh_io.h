@@ -429,9 +429,15 @@ bool write_INP(const std::string& fname, const Indexed_hex_mesh<Point>& mesh, He
 \ingroup PkgHexahedralMeshOptimizationIO
 
 \brief Writes `mesh` as an Exodus II file (`.exo`, `.e`): one `HEX8`
-element block per distinct value of `mesh.hexahedron_references` (block id =
-the value, or 1 for a mesh without references; values <= 0 are refused),
-named after `mesh.hexahedron_reference_names`, the node sets
+element block per distinct value of `mesh.hexahedron_references`, named
+after `mesh.hexahedron_reference_names`. Block ids must be positive: a
+positive reference is its own block id, and the others (0, which MEDIT
+writers often leave on every element, and negative values) take, in the
+order 0, -1, -2, ..., the smallest positive ids no positive reference uses;
+so 0 becomes block 1 unless 1 is a reference too, and a mesh without
+references is one block 1. These read back as the block ids;
+`check_hex_mesh_output()` reports the remapped references, but for 0 -> 1,
+as warnings. Then the node sets
 `mesh.vertex_sets`, the side sets `mesh.side_sets`, and the id maps
 `mesh.point_ids` and `mesh.hexahedron_ids` when usable. The hexahedra are
 written block by block: a mesh whose references are not sorted reads back
@@ -444,36 +450,6 @@ bool write_EXODUS(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
 {
   namespace io = Hexahedral_mesh_optimization::internal::io;
   return io::guarded_write(fname, err, [&]() { return io::write_EXODUS_file(fname, mesh, err); });
-}
-
-/*!
-\ingroup PkgHexahedralMeshOptimizationIO
-
-\brief Writes `mesh`, choosing the format by the extension of `fname`
-(case-insensitive): `.mesh` (`write_MEDIT()`; MEDIT has no place for
-`fields`, which are then ignored), `.vtk` (`write_VTK()`, ASCII), `.vtu`
-(`write_VTU()`), `.msh` (`write_MSH()`, version 4.1 ASCII), `.inp`
-(`write_INP()`, fields ignored), `.exo` or `.e` (`write_EXODUS()`, fields
-ignored). Any other extension is an error and nothing is written.
-
-Parameters and result as for `write_VTK()`.
-*/
-template <class Point>
-bool write_hex_mesh(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
-                    const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr)
-{
-  namespace io = Hexahedral_mesh_optimization::internal::io;
-  std::string why;
-  switch(io::hex_mesh_format(fname, why))
-  {
-  case io::Hex_mesh_format::medit: return write_MEDIT(fname, mesh, err);
-  case io::Hex_mesh_format::vtk: return write_VTK(fname, mesh, fields, err, false);
-  case io::Hex_mesh_format::vtu: return write_VTU(fname, mesh, fields, err);
-  case io::Hex_mesh_format::msh: return write_MSH(fname, mesh, fields, err);
-  case io::Hex_mesh_format::inp: return write_INP(fname, mesh, err);
-  case io::Hex_mesh_format::exodus: return write_EXODUS(fname, mesh, err);
-  default: return io::write_failure(fname, err, why);
-  }
 }
 
 /*!
@@ -567,6 +543,135 @@ bool write_hex_mesh_as(Hex_mesh_file_format format, const std::string& fname, co
   case Hex_mesh_file_format::exodus: return write_EXODUS(fname, mesh, err);
   }
   return false;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief The format that `write_hex_mesh()` chooses for `fname`, by its
+extension (case-insensitive): `.mesh` (`medit`), `.vtk` (`vtk`, ASCII),
+`.vtu` (`vtu`), `.msh` (`msh41`, ASCII), `.inp` (`inp`), `.exo` or `.e`
+(`exodus`).
+
+\param fname the file name
+\param format receives the format
+\param error if not null and the extension names no format, receives why,
+       e.g. "unknown file extension '.txt': expected .mesh, .vtk, .vtu, .msh, .inp, .exo or .e"
+\return `false` for any other extension
+*/
+inline bool hex_mesh_file_format_from_extension(const std::string& fname, Hex_mesh_file_format& format,
+                                                std::string* error = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  std::string why;
+  switch(io::hex_mesh_format(fname, why))
+  {
+  case io::Hex_mesh_format::medit: format = Hex_mesh_file_format::medit; return true;
+  case io::Hex_mesh_format::vtk: format = Hex_mesh_file_format::vtk; return true;
+  case io::Hex_mesh_format::vtu: format = Hex_mesh_file_format::vtu; return true;
+  case io::Hex_mesh_format::msh: format = Hex_mesh_file_format::msh41; return true;
+  case io::Hex_mesh_format::inp: format = Hex_mesh_file_format::inp; return true;
+  case io::Hex_mesh_format::exodus: format = Hex_mesh_file_format::exodus; return true;
+  default: break;
+  }
+  if(error != nullptr)
+    *error = why;
+  return false;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Writes `mesh`, choosing the format by the extension of `fname`
+(case-insensitive): `.mesh` (`write_MEDIT()`; MEDIT has no place for
+`fields`, which are then ignored), `.vtk` (`write_VTK()`, ASCII), `.vtu`
+(`write_VTU()`), `.msh` (`write_MSH()`, version 4.1 ASCII), `.inp`
+(`write_INP()`, fields ignored), `.exo` or `.e` (`write_EXODUS()`, fields
+ignored); see `hex_mesh_file_format_from_extension()`. Any other extension
+is an error and nothing is written.
+
+Parameters and result as for `write_VTK()`.
+*/
+template <class Point>
+bool write_hex_mesh(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+                    const Hex_mesh_fields& fields = Hex_mesh_fields(), Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  Hex_mesh_file_format format;
+  std::string why;
+  if(!hex_mesh_file_format_from_extension(fname, format, &why))
+    return io::write_failure(fname, err, why);
+  return write_hex_mesh_as(format, fname, mesh, fields, err);
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief Checks, before the work that produces a mesh, that it can be written
+to `fname` in `format`, so that a bad output is found out before the work
+rather than after it: the build can write the format (Exodus II needs its
+library), the folder of `fname` exists, `fname` is not a folder, and a file
+can be created there (the temporary file the writers write is created and
+removed at once; on Linux it has no name, so nothing appears in the folder).
+Nothing is written. A write can still fail later (a full disk, a folder
+removed meanwhile).
+
+\param format the format the mesh will be written in
+\param fname the file it will be written to
+\param err if not null, receives the reason of a failure, e.g.
+       "out/mesh.vtk: its folder 'out' does not exist"
+\return `true` when the checks pass
+*/
+inline bool check_hex_mesh_output(Hex_mesh_file_format format, const std::string& fname,
+                                  Hex_mesh_io_error* err = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+#ifndef CGAL_HMO_HAVE_EXODUS
+  if(format == Hex_mesh_file_format::exodus)
+    return io::write_failure(fname, err, io::no_exodus_support());
+#else
+  (void)format;
+#endif
+  std::string why;
+  if(!io::probe_output_file(fname, why))
+    return io::write_failure(fname, err, why);
+  return true;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief The checks of `check_hex_mesh_output(format, fname, err)`, and that
+the groups of `mesh` can be written in `format`: Exodus II ids (the node and
+element number maps) must fit 32 bits. The references that Exodus II cannot
+take as block ids are given others, as `write_EXODUS()` says; each is
+reported in `warnings`, but for reference 0 written as block 1. Only the
+connectivity and the groups of `mesh` are looked at, which the optimisation
+never changes: call this on the mesh read, before optimising it.
+
+\param format the format the mesh will be written in
+\param fname the file it will be written to
+\param mesh the mesh (its groups and ids)
+\param err if not null, receives the reason of a failure
+\param warnings if not null, receives one message per group written otherwise than it is
+\return `true` when the checks pass
+*/
+template <class Point>
+bool check_hex_mesh_output(Hex_mesh_file_format format, const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
+                           Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  if(!check_hex_mesh_output(format, fname, err))
+    return false;
+  if(format == Hex_mesh_file_format::exodus)
+  {
+#ifdef CGAL_HMO_HAVE_EXODUS
+    if(!io::check_exodus_writable(fname, mesh, err))
+      return false;
+#endif
+    io::exodus_block_ids(mesh.hexahedron_references, warnings);
+  }
+  return true;
 }
 
 /// @}

@@ -221,6 +221,51 @@ private:
   int errno_ = 0;
 };
 
+/// Whether a file can be written at `target`, to find out before the work
+/// that produces its data rather than after: its folder exists, `target` is
+/// not a folder (the final rename would fail), and the temporary that
+/// Atomic_output_file writes can be created next to it. That temporary is
+/// created and removed at once (on Linux it is unnamed, so nothing ever
+/// appears in the folder). On failure `error` says why.
+inline bool probe_output_file(const std::string& target, std::string& error)
+{
+  namespace fs = std::filesystem;
+  if(target.empty())
+  {
+    error = "empty file name";
+    return false;
+  }
+  const fs::path parent = fs::path(target).parent_path();
+  const fs::path folder = parent.empty() ? fs::path(".") : parent;
+  std::error_code ec;
+  const fs::file_status folder_status = fs::status(folder, ec);
+  if(ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+  {
+    error = "cannot access its folder '" + folder.string() + "': " + ec.message();
+    return false;
+  }
+  if(!fs::exists(folder_status))
+  {
+    error = "its folder '" + folder.string() + "' does not exist";
+    return false;
+  }
+  if(!fs::is_directory(folder_status))
+  {
+    error = "'" + folder.string() + "' is not a folder";
+    return false;
+  }
+  if(fs::is_directory(fs::status(target, ec)))
+  {
+    error = "is a folder, not a file";
+    return false;
+  }
+  Atomic_output_file probe;
+  if(!probe.open(target, error))
+    return false;
+  probe.discard();
+  return true;
+}
+
 } // namespace io
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization

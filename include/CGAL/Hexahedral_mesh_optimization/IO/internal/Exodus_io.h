@@ -39,6 +39,36 @@ namespace Hexahedral_mesh_optimization {
 namespace internal {
 namespace io {
 
+/// Exodus II element block ids must be positive; MEDIT references and gmsh
+/// physical tags need not be (MEDIT writers often leave every element at
+/// reference 0). The block id of each value of `references`: a positive
+/// reference is its own block id; the others take, in the order 0, -1, -2,
+/// ..., the smallest positive ids that no positive reference uses, so that
+/// 0 becomes block 1 unless 1 is a reference too. With `warnings`, one per
+/// reference written under another id, but for 0 -> 1 (the common case,
+/// which reads back as a mesh whose hexahedra are all in block 1).
+inline std::map<int, int> exodus_block_ids(const std::vector<int>& references,
+                                           std::vector<std::string>* warnings = nullptr)
+{
+  std::map<int, int> block_of;
+  for(int r : references)
+    block_of.emplace(r, r);
+  int free_id = 1;
+  // the non-positive references, from 0 down (the map is in increasing order)
+  for(auto it = block_of.rbegin(); it != block_of.rend(); ++it)
+  {
+    if(it->first > 0)
+      continue;
+    while(block_of.count(free_id) != 0)  // a positive reference
+      ++free_id;
+    it->second = free_id++;
+    if(warnings != nullptr && !(it->first == 0 && it->second == 1))
+      warnings->push_back("hexahedron reference " + std::to_string(it->first) + " written as Exodus II element block " +
+                          std::to_string(it->second) + " (block ids must be positive)");
+  }
+  return block_of;
+}
+
 #ifdef CGAL_HMO_HAVE_EXODUS
 
 /// an open Exodus file, closed at the end of the scope
@@ -392,16 +422,12 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
   });
 }
 
-/// what the Exodus writer cannot write: block ids (the references) must be
-/// positive and the ids must fit 32 bits
+/// what the Exodus writer cannot write: the ids must fit 32 bits (the
+/// references can all be written: see exodus_block_ids)
 template <class Point>
 bool check_exodus_writable(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
                            CGAL::IO::Hex_mesh_io_error* err)
 {
-  for(int r : mesh.hexahedron_references)
-    if(r <= 0)
-      return write_failure(fname, err, "hexahedron reference " + std::to_string(r) +
-                                         ": Exodus II element block ids must be positive");
   for(const std::vector<long long>* ids : {&mesh.point_ids, &mesh.hexahedron_ids})
     for(long long i : *ids)
       if(i > INT_MAX)
@@ -409,12 +435,13 @@ bool check_exodus_writable(const std::string& fname, const Indexed_hex_mesh<Poin
   return true;
 }
 
-/// the hexahedra grouped by block (reference, 1 when there are none), in
-/// the order of the block ids, and the position of each hexahedron in the
-/// Exodus numbering that follows the blocks
+/// the hexahedra grouped by block (see exodus_block_ids), in the order of
+/// the block ids, the reference of each block, and the position of each
+/// hexahedron in the Exodus numbering that follows the blocks
 struct Exodus_blocks
 {
   std::map<int, std::vector<std::size_t> > hexahedra_of_block;
+  std::map<int, int> reference_of_block;
   std::vector<std::size_t> new_position;
 };
 
@@ -422,8 +449,12 @@ template <class Point>
 Exodus_blocks exodus_blocks(const Indexed_hex_mesh<Point>& mesh)
 {
   Exodus_blocks blocks;
+  const std::map<int, int> block_of = exodus_block_ids(mesh.hexahedron_references);
+  for(const auto& rb : block_of)
+    blocks.reference_of_block[rb.second] = rb.first;
   for(std::size_t h = 0; h < mesh.hexahedra.size(); ++h)
-    blocks.hexahedra_of_block[mesh.hexahedron_references.empty() ? 1 : mesh.hexahedron_references[h]].push_back(h);
+    blocks.hexahedra_of_block[mesh.hexahedron_references.empty() ? 1 : block_of.at(mesh.hexahedron_references[h])]
+      .push_back(h);
   blocks.new_position.resize(mesh.hexahedra.size());
   std::size_t next = 0;
   for(const auto& b : blocks.hexahedra_of_block)
@@ -492,7 +523,9 @@ bool write_exodus_element_blocks(int exo, const Indexed_hex_mesh<Point>& mesh, c
     if(ex_put_block(exo, EX_ELEM_BLOCK, b.first, "HEX8", static_cast<int64_t>(b.second.size()), 8, 0, 0, 0) < 0 ||
        ex_put_conn(exo, EX_ELEM_BLOCK, b.first, conn.data(), nullptr, nullptr) < 0)
       return failed("an element block");
-    const auto name = mesh.hexahedron_reference_names.find(b.first);
+    const auto reference = blocks.reference_of_block.find(b.first);
+    const auto name = mesh.hexahedron_reference_names.find(
+      reference == blocks.reference_of_block.end() ? b.first : reference->second);
     if(name != mesh.hexahedron_reference_names.end() && ex_put_name(exo, EX_ELEM_BLOCK, b.first, name->second.c_str()) < 0)
       return failed("a block name");
   }
