@@ -277,16 +277,42 @@ int main(int argc, char** argv)
 
   try
   {
+    // ------------------------------------------- the outputs, before any work
+    // a file that cannot be written is found out now, not after the
+    // optimisation: its folder, a file created there (the writers' own
+    // temporary, removed at once), and for OUTPUT whether the build writes
+    // its format; the groups are checked once the mesh is read
+    CGAL::IO::Hex_mesh_io_error io_error;
+    const bool has_output = !options.output.empty();
+    if(has_output && !CGAL::IO::check_hex_mesh_output(options.output_format, options.output, &io_error))
+      return fail(io_error.what());
+    for(const std::string* report : {&options.report_json, &options.histogram_svg})
+      if(!report->empty() && !check_text_file_writable(*report, error))
+        return fail(error);
+
     // ---------------------------------------------------------- read
     const Clock::time_point read_start = Clock::now();
     Mesh mesh;
-    CGAL::IO::Hex_mesh_io_error io_error;
     std::vector<std::string> warnings;
     const bool read = CGAL::IO::read_hex_mesh(options.input, mesh, &io_error, &warnings);
     for(const std::string& w : warnings)
       std::cerr << "warning: " << w << std::endl;
     if(!read)
       return fail(io_error.what());
+
+    // the groups of the mesh read in the format of OUTPUT: refused (ids an
+    // Exodus II file cannot hold) or written otherwise (references that are
+    // not Exodus block ids) before the work rather than after it
+    if(has_output)
+    {
+      warnings.clear();
+      const bool writable =
+        CGAL::IO::check_hex_mesh_output(options.output_format, options.output, mesh, &io_error, &warnings);
+      for(const std::string& w : warnings)
+        std::cerr << "warning: " << options.output << ": " << w << std::endl;
+      if(!writable)
+        return fail(io_error.what());
+    }
 
     Surface reference;
     std::string reference_warning; // printed once, when the reference is read
@@ -318,7 +344,6 @@ int main(int argc, char** argv)
     before.quality = CGAL::hex_mesh_quality(mesh);
     before.certificate = CGAL::hex_mesh_validity_certificate(mesh);
     before.seconds = seconds_since(read_start);
-    const bool has_output = !options.output.empty();
     // --worst: of the output, or of the input in report-only mode
     if(options.worst > 0 && !has_output)
       before.worst = worst_elements(mesh, CGAL::hex_mesh_scaled_jacobians(mesh), options.worst);
@@ -361,10 +386,7 @@ int main(int argc, char** argv)
       CGAL::IO::Hex_mesh_fields fields;
       // the formats with a place for cell fields (the others ignore them)
       fields.cell_scalars.push_back({"scaled_jacobian", sj});
-      const bool written = options.has_output_format
-                             ? CGAL::IO::write_hex_mesh_as(options.output_format, options.output, mesh, fields, &io_error)
-                             : CGAL::IO::write_hex_mesh(options.output, mesh, fields, &io_error);
-      if(!written)
+      if(!CGAL::IO::write_hex_mesh_as(options.output_format, options.output, mesh, fields, &io_error))
         return fail(io_error.what());
       if(!options.quiet)
       {

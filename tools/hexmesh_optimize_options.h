@@ -49,6 +49,7 @@ struct Hexmesh_optimize_options
   std::size_t worst = 0;          ///< --worst N: list the N worst elements; 0: none
   /// --output-format FORMAT: the format of OUTPUT whatever its extension
   bool has_output_format = false;
+  /// the format OUTPUT is written in: --output-format's, or that of its extension
   CGAL::IO::Hex_mesh_file_format output_format = CGAL::IO::Hex_mesh_file_format::medit;
 };
 
@@ -232,6 +233,11 @@ inline std::string usage()
        "Verdict scaled Jacobian, histogram) and, when OUTPUT is given, writes the\n"
        "optimised mesh there with the quality after (.vtk/.vtu/.msh outputs carry the\n"
        "per-cell scaled Jacobian as the cell field \"scaled_jacobian\").\n"
+       "Groups go where the output format has a place for them. Exodus II element block\n"
+       "ids must be positive: MEDIT reference 0 (often on every element) becomes block 1,\n"
+       "other references <= 0 the next ids no reference uses, with a warning.\n"
+       "OUTPUT, --report and --histogram-svg are checked before any work: format (from the\n"
+       "extension), folder, a file can be created there, groups the format can hold.\n"
        "\n"
        "options:\n";
   for(const Option_spec& o : option_table())
@@ -247,7 +253,8 @@ inline std::string usage()
        "\n"
        "exit status: 0 success (with OUTPUT: every element of the output is certified\n"
        "valid, its Jacobian positive at the 8 corners and the centre by exact arithmetic), 1 the\n"
-       "mesh could not be read, processed or written, 2 bad command line or a --reference\n"
+       "mesh could not be read, processed or written (an output that cannot be written is\n"
+       "found before the work, and nothing is written), 2 bad command line or a --reference\n"
        "that does not fit the mesh (another frame or object; nothing is written), 3 --check\n"
        "failed, 4 elements of the output are still inverted or not certified valid (listed\n"
        "on standard error and in\n"
@@ -259,17 +266,16 @@ inline std::string usage()
   return s.str();
 }
 
-/// whether `path` ends in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e (any
-/// case): the formats the writer knows
-inline bool has_mesh_extension(const std::string& path)
+/// whether `path` ends in `extension` (".json", ".svg"; any case)
+inline bool has_extension(const std::string& path, const std::string& extension)
 {
-  const std::size_t dot = path.find_last_of('.');
-  if(dot == std::string::npos || path.find('/', dot) != std::string::npos)
+  if(path.size() < extension.size())
     return false;
-  std::string ext = path.substr(dot + 1);
-  for(char& c : ext)
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == "mesh" || ext == "vtk" || ext == "vtu" || ext == "msh" || ext == "inp" || ext == "exo" || ext == "e";
+  for(std::size_t i = 0; i < extension.size(); ++i)
+    if(std::tolower(static_cast<unsigned char>(path[path.size() - extension.size() + i])) !=
+       std::tolower(static_cast<unsigned char>(extension[i])))
+      return false;
+  return true;
 }
 
 enum class Parse_result { run, help, error };
@@ -349,14 +355,32 @@ inline Parse_result parse_options(int argc, const char* const* argv, Hexmesh_opt
   if(files.size() == 2)
   {
     options.output = files[1];
-    // checked now rather than after a long optimisation
-    if(!options.has_output_format && !has_mesh_extension(options.output))
+    // checked now rather than after a long optimisation; the format of the
+    // extension is the one CGAL::IO::write_hex_mesh() would choose
+    std::string why;
+    if(!options.has_output_format &&
+       !CGAL::IO::hex_mesh_file_format_from_extension(options.output, options.output_format, &why))
     {
-      error = "output '" + options.output +
-              "' must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e (or give --output-format)";
+      error = "output '" + options.output + "': " + why + " (or give --output-format)";
       return Parse_result::error;
     }
   }
+  // the reports are JSON and SVG whatever their names: a name that says
+  // otherwise (report.txt, histogram.png) is a mistake found before the work
+  struct Report_path
+  {
+    const char* option;
+    const std::string* path;
+    const char* extension;
+  };
+  const Report_path reports[] = {{"--report", &options.report_json, ".json"},
+                                 {"--histogram-svg", &options.histogram_svg, ".svg"}};
+  for(const Report_path& r : reports)
+    if(!r.path->empty() && !has_extension(*r.path, r.extension))
+    {
+      error = std::string("option ") + r.option + ": '" + *r.path + "' must end in " + r.extension;
+      return Parse_result::error;
+    }
   return Parse_result::run;
 }
 

@@ -11,6 +11,7 @@
 #define HMO_TOOLS_QUALITY_REPORT_H
 
 #include <CGAL/hex_mesh_quality.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Atomic_output_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 
 #include <algorithm>
@@ -18,7 +19,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <ostream>
@@ -173,34 +173,33 @@ inline void print_quality_report(std::ostream& out, const std::string& title, co
 }
 
 // ------------------------------------------------------------------ files
-/// Writes `content` to `path` through a temporary file renamed in place, so
-/// that a failed run leaves no partial file.
+/// Writes `content` to `path` as the mesh writers write their files
+/// (Atomic_output_file): a temporary, unnamed on Linux, renamed over `path`
+/// when complete, so that a failed or killed run leaves neither a partial
+/// file nor a temporary behind.
 inline bool write_text_file(const std::string& path, const std::string& content, std::string& error)
 {
-  const std::string tmp = path + ".tmp";
+  CGAL::Hexahedral_mesh_optimization::internal::io::Atomic_output_file file;
+  std::string why;
+  if(file.open(path, why))
   {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if(!f)
-    {
-      error = path + ": cannot open for writing";
-      return false;
-    }
-    f << content;
-    f.flush();
-    if(!f)
-    {
-      std::remove(tmp.c_str());
-      error = path + ": write failed";
-      return false;
-    }
+    file.write(content.data(), content.size());  // a failure is reported by commit()
+    if(file.commit(why))
+      return true;
   }
-  if(std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    error = path + ": cannot replace the file";
-    return false;
-  }
-  return true;
+  error = path + ": " + why;
+  return false;
+}
+
+/// Whether `path` can be written, checked before the work whose results it
+/// will hold (see probe_output_file).
+inline bool check_text_file_writable(const std::string& path, std::string& error)
+{
+  std::string why;
+  if(CGAL::Hexahedral_mesh_optimization::internal::io::probe_output_file(path, why))
+    return true;
+  error = path + ": " + why;
+  return false;
 }
 
 inline std::string json_string(const std::string& s)

@@ -3,7 +3,10 @@
 #
 # Runs the built hexmesh-optimize on good and bad command lines and files.
 #   cmake -DTOOL=<hexmesh-optimize> -DEXAMPLE_DATA=<examples data dir>
-#         -DSHARED_DATA=<shared data dir> -DWORK=<scratch dir> -P this_file
+#         -DSHARED_DATA=<shared data dir> -DWORK=<scratch dir>
+#         [-DMESH=bunny|small] [-DEXODUS=ON|OFF] -P this_file
+# (EXODUS: whether the tool was built with Exodus II; if not given, the
+# tool's answer decides)
 # Every failed check is printed; the script fails at the end if any did.
 
 cmake_minimum_required(VERSION 3.19) # string(JSON)
@@ -112,7 +115,7 @@ check("option without its value exits 2 (got ${novalue_rc})" novalue_rc EQUAL 2)
 
 run(badext ${bunny} ${WORK}/out.txt)
 check("an unknown output format exits 2 (got ${badext_rc})" badext_rc EQUAL 2)
-check("and says why: ${badext_err}" badext_err MATCHES "must end in .mesh, .vtk, .vtu, .msh, .inp, .exo or .e")
+check("and says why: ${badext_err}" badext_err MATCHES "^hexmesh-optimize: error: output '[^\n]*out.txt': unknown file extension '\\.txt': expected \\.mesh, \\.vtk, \\.vtu, \\.msh, \\.inp, \\.exo or \\.e \\(or give --output-format\\)\n")
 check("nothing written" NOT EXISTS ${WORK}/out.txt)
 
 run(badseed ${bunny} ${WORK}/seed.mesh --crease-seed-angle 200)
@@ -145,6 +148,54 @@ check("no report after a read failure" NOT EXISTS ${WORK}/broken.json)
 run(unwritable ${mesh} ${WORK}/no/such/dir/out.vtk)
 check("an unwritable output fails" NOT unwritable_rc EQUAL 0)
 check("the write error names the file: ${unwritable_err}" unwritable_err MATCHES "^hexmesh-optimize: error: [^\n]*out.vtk")
+
+# ------------------------------------------------- outputs checked before the work
+# (issue 48: an output in a folder that does not exist was refused after the
+# whole optimisation.) OUTPUT, --report and --histogram-svg are checked before
+# the mesh is read: exit 1, one error line naming the file and the folder,
+# no quality report (the input is not even read), no stage, nothing written
+foreach(bad output report histogram)
+  if(bad STREQUAL "output")
+    set(args ${WORK}/no_such_dir/out.vtk)
+    set(named "no_such_dir/out.vtk")
+  elseif(bad STREQUAL "report")
+    set(args ${WORK}/nodir_report_out.vtk --report ${WORK}/no_such_dir/r.json)
+    set(named "no_such_dir/r.json")
+  else()
+    set(args ${WORK}/nodir_histogram_out.vtk --histogram-svg ${WORK}/no_such_dir/h.svg)
+    set(named "no_such_dir/h.svg")
+  endif()
+  run(nodir ${mesh} ${args})
+  check("${bad} in a folder that does not exist: exit 1 (got ${nodir_rc})" nodir_rc EQUAL 1)
+  check("${bad}: one error line naming the file and its folder: ${nodir_err}"
+        nodir_err MATCHES "^hexmesh-optimize: error: [^\n]*${named}: its folder '[^\n]*no_such_dir' does not exist\n$")
+  check("${bad}: refused before the input is read and measured: ${nodir_out}" NOT nodir_out MATCHES "before:|hexes")
+  check("${bad}: refused before any stage runs: ${nodir_out}" NOT nodir_out MATCHES "optimising|untangling|done in")
+endforeach()
+check("no mesh written when the report cannot be" NOT EXISTS ${WORK}/nodir_report_out.vtk)
+check("no mesh written when the histogram cannot be" NOT EXISTS ${WORK}/nodir_histogram_out.vtk)
+check("no folder created" NOT EXISTS ${WORK}/no_such_dir)
+# report only (no OUTPUT): the report's folder too
+run(nodir_only ${mesh} --report ${WORK}/no_such_dir/r.json)
+check("report only, in a folder that does not exist: exit 1 (got ${nodir_only_rc})" nodir_only_rc EQUAL 1)
+check("report only: refused before the input is read: ${nodir_only_out}" NOT nodir_only_out MATCHES "before:")
+# an output that is a folder
+file(MAKE_DIRECTORY ${WORK}/a_folder.vtk)
+run(isdir ${mesh} ${WORK}/a_folder.vtk)
+check("an output that is a folder: exit 1 (got ${isdir_rc})" isdir_rc EQUAL 1)
+check("it says so: ${isdir_err}" isdir_err MATCHES "^hexmesh-optimize: error: [^\n]*a_folder.vtk: is a folder, not a file\n$")
+check("before the work: ${isdir_out}" NOT isdir_out MATCHES "before:|optimising")
+# the reports are JSON and SVG: another extension is a command-line error
+run(report_ext ${mesh} ${WORK}/report_ext.vtk --report ${WORK}/r.txt)
+check("--report r.txt exits 2 (got ${report_ext_rc})" report_ext_rc EQUAL 2)
+check("and says why: ${report_ext_err}" report_ext_err MATCHES "^hexmesh-optimize: error: option --report: '[^\n]*r.txt' must end in \\.json\n")
+check("nothing written" NOT EXISTS ${WORK}/r.txt AND NOT EXISTS ${WORK}/report_ext.vtk)
+run(svg_ext ${mesh} --histogram-svg ${WORK}/h.png)
+check("--histogram-svg h.png exits 2 (got ${svg_ext_rc})" svg_ext_rc EQUAL 2)
+check("and says why: ${svg_ext_err}" svg_ext_err MATCHES "option --histogram-svg: '[^\n]*h.png' must end in \\.svg\n")
+# the checks create the writers' temporary and remove it at once
+file(GLOB leftovers ${WORK}/*.tmp*)
+check("no temporary left by the checks: ${leftovers}" NOT leftovers)
 
 # a reference surface in another frame (a tetrahedron far from the bunny):
 # a bad argument, exit 2, one error line naming both files, nothing written
@@ -492,6 +543,86 @@ check("each hexahedron keeps its physical group" msh_out MATCHES "\n3 1 5 1\n7 1
 check("the scaled Jacobian is an element view" msh_out MATCHES "\\$ElementData\n1\n\"scaled_jacobian\"\n")
 run(msh_again ${WORK}/groups_out.msh ${WORK}/groups_out.inp --quiet)
 check("the tool reads its .msh output (rc ${msh_again_rc}: ${msh_again_err})" msh_again_rc EQUAL 0)
+
+# MEDIT reference 0 -> Exodus II (issue 48: "hexahedron reference 0: Exodus
+# II element block ids must be positive", exit 1 after the whole run). Block
+# ids must be positive: 0 (on every hexahedron, as many MEDIT writers leave
+# it) is block 1, other references <= 0 the next free ids, with a warning.
+# Tiny generated 2x2x2 grids, cheap under the sanitizers too.
+function(write_grid file refs)
+  set(text "MeshVersionFormatted 2\nDimension 3\nVertices\n27\n")
+  foreach(k RANGE 2)
+    foreach(j RANGE 2)
+      foreach(i RANGE 2)
+        string(APPEND text "${i} ${j} ${k} 0\n")
+      endforeach()
+    endforeach()
+  endforeach()
+  string(APPEND text "Hexahedra\n8\n")
+  set(h 0)
+  foreach(k RANGE 1)
+    foreach(j RANGE 1)
+      foreach(i RANGE 1)
+        math(EXPR a "1 + ${i} + 3 * (${j} + 3 * ${k})") # MEDIT is 1-based
+        math(EXPR b "${a} + 1")
+        math(EXPR c "${a} + 4")
+        math(EXPR d "${a} + 3")
+        math(EXPR e "${a} + 9")
+        math(EXPR f "${b} + 9")
+        math(EXPR g "${c} + 9")
+        math(EXPR hh "${d} + 9")
+        list(GET refs ${h} r)
+        string(APPEND text "${a} ${b} ${c} ${d} ${e} ${f} ${g} ${hh} ${r}\n")
+        math(EXPR h "${h} + 1")
+      endforeach()
+    endforeach()
+  endforeach()
+  string(APPEND text "End\n")
+  file(WRITE ${file} "${text}")
+endfunction()
+write_grid(${WORK}/ref0.mesh "0;0;0;0;0;0;0;0")
+write_grid(${WORK}/refs.mesh "0;0;0;2;2;-3;-3;-3")
+run(exo0 ${WORK}/ref0.mesh ${WORK}/ref0.exo --quiet)
+if(NOT DEFINED EXODUS OR EXODUS STREQUAL "")
+  # run by hand without -DEXODUS: the tool says whether it writes .exo
+  if(exo0_err MATCHES "no Exodus II support")
+    set(EXODUS OFF)
+  else()
+    set(EXODUS ON)
+  endif()
+endif()
+if(EXODUS)
+  check("MEDIT with every reference 0 -> .exo (rc ${exo0_rc}: ${exo0_err})" exo0_rc EQUAL 0)
+  check("the .exo is written" EXISTS ${WORK}/ref0.exo)
+  check("reference 0 -> block 1 without a warning: ${exo0_err}" NOT exo0_err MATCHES "warning")
+  # and back to MEDIT: every hexahedron in block 1
+  run(exo0_back ${WORK}/ref0.exo ${WORK}/ref0_back.mesh --untangle --quiet)
+  check("the .exo reads back (rc ${exo0_back_rc}: ${exo0_back_err})" exo0_back_rc EQUAL 0)
+  if(EXISTS ${WORK}/ref0_back.mesh)
+    file(READ ${WORK}/ref0_back.mesh back)
+    check("every hexahedron in block 1: ${back}" back MATCHES "Hexahedra\n8\n([0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ 1\n)+\n*End\n")
+  endif()
+  # 0, 2 and -3: blocks 1, 2 and 3, a warning for -3 only
+  run(exo3 ${WORK}/refs.mesh ${WORK}/refs.exo --quiet)
+  check("references 0, 2, -3 -> .exo (rc ${exo3_rc}: ${exo3_err})" exo3_rc EQUAL 0)
+  check("a warning for -3: ${exo3_err}"
+        exo3_err MATCHES "^warning: [^\n]*refs.exo: hexahedron reference -3 written as Exodus II element block 3 \\(block ids must be positive\\)\n$")
+  run(exo3_back ${WORK}/refs.exo ${WORK}/refs_back.mesh --untangle --quiet)
+  if(EXISTS ${WORK}/refs_back.mesh)
+    file(READ ${WORK}/refs_back.mesh back)
+    set(hex "[0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ [0-9]+ ") # no {n} in CMake regexes
+    check("blocks 1, 2 and 3 read back, 3 + 2 + 3 hexahedra: ${back}"
+          back MATCHES "Hexahedra\n8\n${hex}1\n${hex}1\n${hex}1\n${hex}2\n${hex}2\n${hex}3\n${hex}3\n${hex}3\n")
+  else()
+    check("the .exo with references 0, 2, -3 reads back (rc ${exo3_back_rc}: ${exo3_back_err})" FALSE)
+  endif()
+else()
+  # a build without Exodus II: refused before the work, saying why
+  check("no Exodus II: exit 1 (got ${exo0_rc})" exo0_rc EQUAL 1)
+  check("no Exodus II: says so before the work: ${exo0_err}"
+        exo0_err MATCHES "^hexmesh-optimize: error: [^\n]*ref0.exo: this build has no Exodus II support")
+  check("no .exo written" NOT EXISTS ${WORK}/ref0.exo)
+endif()
 
 # --output-format: the format whatever the extension (or without one)
 run(fmt_bad ${WORK}/groups.msh ${WORK}/fmt_out.dat --output-format stl)
