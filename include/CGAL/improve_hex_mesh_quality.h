@@ -105,6 +105,39 @@ void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& 
   }
 }
 
+/// whether a mesh needs no work: nothing inverted, its MSJ at the aimed
+/// target already, and no reference it starts away from (`warning`: the
+/// reference check's)
+inline bool already_at_target(const Quality_statistics& q, const Quality_settings& s, const std::string& warning)
+{
+  return q.inverted == 0 && q.msj >= (std::min)(s.target_msj, s.schedule.excellent_msj) && warning.empty();
+}
+
+/// The result of a run with nothing to do: the input as it is, measured (its
+/// certificate, its surface error), and one stage that says so.
+template <class Visitor>
+Optimization_result nothing_to_do(const Hex_mesh_arrays& mesh, const Quality_statistics& q, const Quality_settings& s,
+                                  Visitor& visitor)
+{
+  Optimization_result res;
+  res.inverted_before = res.inverted_after = q.inverted;
+  res.msj_before = res.msj_after = q.msj;
+  res.asj_before = res.asj_after = q.asj;
+  res.success = true;
+  res.certificate.hexes = mesh.hexes.size();
+  res.certificate.not_certified = uncertified_hexes(mesh);
+  res.surface_error = s.reference_points ? relative_surface_error_to(mesh, mesh, s.reference_points, s.reference_triangles)
+                                         : 0.;
+  Stage_report sr;
+  sr.name = "at target";
+  sr.msj_after = q.msj;
+  sr.details = "no inverted element and the MSJ at the target already: nothing to do";
+  visitor.stage_started(sr.name, 0);
+  visitor.stage_finished(sr);
+  res.stages.push_back(sr);
+  return res;
+}
+
 /// the body of `improve_hex_mesh_quality()` (`untangle_first` false) and of
 /// `optimize_hex_mesh()` (true: the untangler runs first when the mesh has
 /// inverted elements, and both results are merged)
@@ -116,6 +149,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   typedef Hex_mesh_adapter<HexMesh> Adapter;
   typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
 
+  const auto start = std::chrono::steady_clock::now(); // for the result's seconds only
   Time_limit time_limit(time_limit_parameter(np));
   time_limit.watch(stop_flag_parameter(np));
   const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
@@ -135,8 +169,15 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   const std::string warning =
     require_reference_fit(arrays, s.reference_points, s.reference_triangles, s.surface_tolerance);
   const Hex_mesh_arrays original = arrays;
+  const Quality_statistics q_input = quality_statistics(arrays);
+  if(already_at_target(q_input, s, warning))
+  {
+    Optimization_result result = nothing_to_do(arrays, q_input, s, visitor);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
   Optimization_result result;
-  const bool untangle = untangle_first && quality_statistics(arrays).inverted > 0;
+  const bool untangle = untangle_first && q_input.inverted > 0;
   if(untangle)
   {
     Hex_mesh_untangler<Visitor> untangler(u, visitor);

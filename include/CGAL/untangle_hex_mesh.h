@@ -75,7 +75,8 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
     "number_of_iterations", choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60), 0., 1e9));
   s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
   const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
-  s.schedule = method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule();
+  s.schedule = choose_parameter(get_parameter(np, hex_mesh_internal_np::schedule),
+                                method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule());
   face_graph_to_soup(
     choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), No_reference_surface()),
     gt, ref_points, ref_tris);

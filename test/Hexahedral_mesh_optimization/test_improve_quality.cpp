@@ -248,6 +248,33 @@ static void test_never_worse()
   HMO_CHECK_CLOSE(recount_msj(g), 1., 1e-9);
 }
 
+/// A valid mesh whose MSJ already meets the target is returned as it is,
+/// measured and certified, with one stage that says so; a target above its
+/// MSJ runs the stages.
+static void test_nothing_to_do()
+{
+  const int n = 4;
+  Mesh m = shell(n, 1.0);
+  perturb_interior(m, n, 0.15, 3);
+  const Mesh input = m;
+  const double msj = CGAL::hex_mesh_quality(m).msj;
+  HMO_CHECK(msj > 0.2 && msj < 0.95);
+  Recorder rec;
+  const HMO::Optimization_result r =
+    CGAL::optimize_hex_mesh(m, HP::target_msj(msj - 0.05, CGAL::parameters::visitor(std::ref(rec))));
+  HMO_CHECK(m.points == input.points);
+  HMO_CHECK(r.success && r.inverted_after == 0);
+  HMO_CHECK(r.msj_before == msj && r.msj_after == msj);
+  HMO_CHECK(r.certificate.hexes == m.hexahedra.size() && r.certificate.not_certified.empty());
+  HMO_CHECK(r.surface_error == 0.);
+  HMO_CHECK(r.stages.size() == 1 && r.stages[0].name == "at target");
+  HMO_CHECK(rec.started.size() == 1 && rec.finished.size() == 1);
+  // the same mesh with a target above its MSJ: the stages run and raise it
+  Mesh again = input;
+  const HMO::Optimization_result up = CGAL::improve_hex_mesh_quality(again, HP::target_msj(msj + 0.05));
+  HMO_CHECK(up.stages.size() > 1 && up.msj_after > msj);
+}
+
 static void test_pipeline_on_tangled_mesh()
 {
   // a shell with interior vertices pushed through their neighbours
@@ -609,6 +636,7 @@ HMO_TEST_MAIN(test_improve_quality)
   HMO_CASE(test_stage_schedule());
   HMO_CASE(test_turn_focus_band());
   HMO_CASE(test_never_worse());
+  HMO_CASE(test_nothing_to_do());
   HMO_CASE(test_pipeline_on_tangled_mesh());
   HMO_CASE(test_paper_method());
   HMO_CASE(test_lcc());

@@ -61,6 +61,10 @@ enum edge_angle_stages_t { edge_angle_stages };
 enum method_t { method };
 enum volume_tolerance_t { volume_tolerance };
 enum outside_tolerance_t { outside_tolerance };
+/// not public API: the whole `internal::Optimization_schedule`, replacing
+/// the method's (the benchmark's ablation runs the pipeline without each
+/// stage in turn through it)
+enum schedule_t { schedule };
 
 } // namespace hex_mesh_internal_np
 

@@ -213,6 +213,22 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
   return worst;
 }
 
+/// the surface error of `mesh` (relative to the reference's diagonal): to
+/// the reference soup when there is one, to the boundary of `input` otherwise
+inline double relative_surface_error_to(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
+                                        const std::vector<Vec3>* ref_points, const std::vector<Tri>* ref_tris)
+{
+  if(ref_points && ref_tris)
+  {
+    Triangle_surface ref;
+    std::vector<Triangle_surface::Vertex_index> vi;
+    for(const Vec3& p : *ref_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+    for(const Tri& t : *ref_tris) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+    return relative_surface_error(mesh, ref);
+  }
+  return relative_surface_error(mesh, input);
+}
+
 template <class Visitor>
 class Hex_mesh_untangler
 {
@@ -262,7 +278,7 @@ public:
     // (what the interior stage freed needs no edge-angle stage: its set-up,
     // ideal angles and target lengths over the whole mesh, cost 5 s on a
     // 1M-hex grid with nothing left to untangle)
-    if(m_inverted > 0 && !stopped())
+    if((sc.edge_angle_stage || !m_s.barrier_fallback || !sc.barrier_stage) && m_inverted > 0 && !stopped())
       edge_angle_stage(topo, *ts, mesh, res);
     if(m_s.barrier_fallback && sc.barrier_stage && m_inverted > 0 && !stopped())
       barrier_stage(topo, *ts, mesh, res);
@@ -471,15 +487,7 @@ private:
 
   double surface_error(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input) const
   {
-    if(m_s.reference_points && m_s.reference_triangles)
-    {
-      Triangle_surface ref;
-      std::vector<Triangle_surface::Vertex_index> vi;
-      for(const Vec3& p : *m_s.reference_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
-      for(const Tri& t : *m_s.reference_triangles) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
-      return relative_surface_error(mesh, ref);
-    }
-    return relative_surface_error(mesh, input);
+    return relative_surface_error_to(mesh, input, m_s.reference_points, m_s.reference_triangles);
   }
 
   Untangle_settings m_s;

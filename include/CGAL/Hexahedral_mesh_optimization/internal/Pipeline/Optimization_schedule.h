@@ -33,6 +33,10 @@ struct Optimization_schedule
   /// stage, the barrier on what that leaves, and the barrier pull-back of
   /// the boundary ("surface")
   bool interior_stage = true;
+  /// untangling: the paper's edge-angle optimiser (Algorithm 1) between the
+  /// two barrier stages; it also runs when the barrier stages are turned off
+  /// (named parameter `barrier_fallback`)
+  bool edge_angle_stage = true;
   bool barrier_stage = true;
   bool surface_stage = true;
   /// quality: the surface restoration before and after the MSJ stages
@@ -272,6 +276,7 @@ struct Optimization_schedule
   {
     Optimization_schedule s;
     s.interior_stage = s.barrier_stage = s.surface_stage = false;
+    s.edge_angle_stage = true;
     s.restoration = false;
     s.surface_fitting = false;
     s.msj_stage_max_min = false;
