@@ -8,9 +8,13 @@
 //   benchmark_hex_mesh_optimization [DATA_DIR] --scaling [--scaling-max-hexes N]
 //                                   [--untangle] [--only SUBSTRING] [--threads N | --threads-compare]
 //   benchmark_hex_mesh_optimization [DATA_DIR] --stress [--stress-seeds N] [--only SUBSTRING] [--threads N]
+//   benchmark_hex_mesh_optimization [DATA_DIR] --ablate [--ablate-only NAME] [--stress-seeds N] [--only SUBSTRING]
+//   any mode: [--variant NAME] [--results FILE]
 //
 // DATA_DIR defaults to HMO_SHARED_DATA_DIR (../shared/data seen from the
-// repository root). Every mode prints a Markdown table.
+// repository root). Every mode prints a Markdown table; with --results FILE
+// (RESULTS.md beside this file) it also replaces that mode's section of FILE,
+// between "<!-- begin MODE -->" and "<!-- end MODE -->", with what it printed.
 //
 // Modes:
 //   default    : the whole pipeline `CGAL::optimize_hex_mesh` (untangle,
@@ -72,21 +76,30 @@
 //                inherited from the parent, printed above the table), hash
 //                (as above). Generating the input is not timed.
 //
-//   --stress   : the stress sets (`stress_sets` below): every valid mesh of
-//                the shared data (stress-base/, amips/, low-quality/ and the
-//                edge-cone method's published outputs) perturbed with N seeds
-//                per mode, interior vertices only and every vertex, by 0.3 to
-//                0.8 of the local edge length (`perturb_by_local_edge`), and
-//                optimised with the unperturbed boundary as reference. One
-//                line per mesh and mode, and a total per mode: runs ending at
-//                0 inverted, runs ending at or above the unperturbed MSJ, the
-//                worst surface error, the optimiser's time. With
-//                --stress-write DIR, every perturbed input is written there
-//                (MEDIT), with the reference surface of each mesh (OFF) and
-//                one line per run in DIR/stress_runs.tsv, so that a failed
-//                run can be repeated with the tool:
+//   --stress   : the stress sets (`stress_sets` below), the yardstick of the
+//                pipeline's stages: every valid mesh of the shared data
+//                (stress-base/, amips/, low-quality/, the published outputs
+//                of edge-cone/ and hexopt/) × three modes (interior vertices
+//                perturbed, every vertex perturbed, boundary-locked
+//                inversions) × N seeds (default 10), the amplitude, the
+//                direction distribution and the share of vertices moved
+//                drawn per seed (`perturb_for_stress`), each optimised with
+//                the unperturbed boundary as reference and the tolerance
+//                0.005. One line per mesh and mode, totals per mode and over
+//                the set: pass rates (0 inverted, MSJ ≥ unperturbed, error
+//                within the tolerance), MSJ and error distributions, time per
+//                10k hexes (the optimiser call). With --stress-write DIR,
+//                every perturbed input is written there (MEDIT), with the
+//                reference surface of each mesh (OFF) and one line per run in
+//                DIR/stress_runs.tsv, so that a run can be repeated with the
+//                tool:
 //                  hexmesh-optimize DIR/<input>.mesh out.mesh
 //                    --reference DIR/<mesh>_reference.off
+//   --ablate   : the default pipeline, then without each of its stages in
+//                turn (`ablations()`), over the 8 published rows and the
+//                stress sets (--stress-seeds per mesh and mode): one line per
+//                variant. A stage stays in the default where its removal
+//                costs measurably.
 //
 // Options:
 //   --untangle              the --untangle mode; with --scaling, only the
@@ -104,6 +117,9 @@
 //   --scaling               the scaling mode above
 //   --scaling-max-hexes N   with --scaling, skip the cases of more than N
 //                           hexes (e.g. 200000: only the 125k and 159k cases)
+//   --variant NAME          run the first of --ablate's variants whose name
+//                           contains NAME instead of the default pipeline
+//   --results FILE          see above
 //   -h, --help              this text
 // --threads and --threads-compare need TBB (CGAL_LINKED_WITH_TBB); without it
 // they are refused (exit status 2), as is any unknown option.
@@ -258,16 +274,25 @@ struct Setup_visitor : HMO::Default_optimization_visitor
 /// with or without a reference surface, the package's method or the paper's
 /// (`paper`). `tolerance` is the pipeline's surface tolerance (its default
 /// is 0.005).
+/// the package method's schedule of every run, and whether its pull-back
+/// runs (`--ablate` changes them)
+static HMO::internal::Optimization_schedule g_schedule;
+static bool g_pull_back = true;
+
 static HMO::Optimization_result run_optimiser(Mesh& mesh, bool untangle_only, const HMO::internal::Triangle_surface& reference,
                                               double tolerance, Setup_visitor& visitor, bool paper = false)
 {
-  const auto np = HP::method(paper ? HMO::Method::paper : HMO::Method::package,
-                             CGAL::parameters::visitor(std::ref(visitor)));
+  typedef HMO::internal::Optimization_schedule Schedule;
+  const auto np = CGAL::Named_function_parameters<Schedule, CGAL::hex_mesh_internal_np::schedule_t,
+                                                  CGAL::parameters::Default_named_parameters>(
+    paper ? Schedule::paper() : g_schedule, CGAL::parameters::default_values())
+                    .visitor(std::ref(visitor));
+  const auto npm = HP::pull_back(paper || g_pull_back, HP::method(paper ? HMO::Method::paper : HMO::Method::package, np));
   visitor.start = Clock::now();
   if(untangle_only)
-    return reference.is_empty() ? CGAL::untangle_hex_mesh(mesh, np)
-                                : CGAL::untangle_hex_mesh(mesh, HP::reference_surface(reference, np));
-  const auto npt = HP::surface_tolerance(tolerance, np);
+    return reference.is_empty() ? CGAL::untangle_hex_mesh(mesh, npm)
+                                : CGAL::untangle_hex_mesh(mesh, HP::reference_surface(reference, npm));
+  const auto npt = HP::surface_tolerance(tolerance, npm);
   return reference.is_empty() ? CGAL::optimize_hex_mesh(mesh, npt)
                               : CGAL::optimize_hex_mesh(mesh, HP::reference_surface(reference, npt));
 }
@@ -300,43 +325,6 @@ static std::size_t perturb(Mesh& m, double fraction, unsigned seed, bool interio
   return CGAL::hex_mesh_quality(m).inverted;
 }
 
-/// The stress sets' generator: every vertex (or, `interior_only`, every
-/// interior vertex) moved in a random direction by `amplitude` times its
-/// local edge length (the mean length of the mesh edges at it). Seeded, so
-/// that runs compare. Returns the number of vertices moved.
-static std::size_t perturb_by_local_edge(Mesh& m, double amplitude, unsigned seed, bool interior_only)
-{
-  std::vector<double> sum(m.points.size(), 0.);
-  std::vector<int> count(m.points.size(), 0);
-  static const int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-  for(const auto& h : m.hexahedra)
-    for(const auto& e : edges)
-    {
-      // an edge shared by several hexes counts once per hex: a mean weighted
-      // by the hexes around it, which is what "local" asks for
-      const double l = std::sqrt(CGAL::squared_distance(m.points[h[e[0]]], m.points[h[e[1]]]));
-      for(int k = 0; k < 2; ++k) { sum[h[e[k]]] += l; ++count[h[e[k]]]; }
-    }
-  std::vector<char> fixed(m.points.size(), 0);
-  if(interior_only)
-    for(std::size_t v : HMO::internal::extract_boundary(HMO::internal::make_hex_mesh_arrays(m, K())).vertices)
-      fixed[v] = 1;
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0., 1.);
-  std::size_t moved = 0;
-  for(std::size_t v = 0; v < m.points.size(); ++v)
-  {
-    K::Vector_3 d(g(rng), g(rng), g(rng)); // drawn for every vertex: the same directions in both modes
-    if(fixed[v] || count[v] == 0) continue;
-    const double n = std::sqrt(d.squared_length());
-    if(!(n > 0.)) continue;
-    m.points[v] = m.points[v] + (amplitude * sum[v] / count[v] / n) * d;
-    ++moved;
-  }
-  return moved;
-}
-
 /// the position of corner q of a hexahedron in its own (a, b, c) frame, MEDIT/VTK
 /// order: 0-3 the bottom face (c = 0) counter-clockwise seen from above, q+4 above q
 static const int hex_corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
@@ -347,6 +335,129 @@ static double scaled_jacobian_of(const Mesh& m, std::size_t h)
   std::array<K::Point_3, 8> p;
   for(int q = 0; q < 8; ++q) p[q] = m.points[m.hexahedra[h][q]];
   return CGAL::hex_scaled_jacobian(p);
+}
+
+/// The stress sets' modes: interior vertices perturbed (the boundary stays
+/// on the surface), every vertex perturbed (the boundary must be found
+/// again), and boundary-locked inversions (a few boundary vertices pushed
+/// through the opposite face of one of their hexes: only a move of the
+/// surface can free them).
+enum Stress_mode { stress_interior, stress_all, stress_locked };
+static const char* const stress_mode_names[3] = {"interior", "all vertices", "boundary-locked"};
+static const char* const stress_mode_files[3] = {"interior", "all", "locked"};
+
+/// what one stress input was drawn with
+struct Stress_draw
+{
+  double amplitude = 0.;      // in local edge lengths (the largest; boundary-locked: the push depth)
+  std::string directions;     // sphere, ball or anisotropic (boundary-locked: "through a face")
+  double fraction = 0.;       // of the eligible vertices moved
+  std::size_t moved = 0;
+};
+
+/// Draws one stress input from `base` (seeded by `seed` and `mode`, so that
+/// runs compare). Interior and every-vertex modes: the amplitude (0.2 to 0.8
+/// local edge lengths), the direction distribution (uniform on the sphere,
+/// uniform in the ball, or anisotropic: a Gaussian squashed along two random
+/// axes to 0.05-0.5 of the third, in the ball) and the fraction of the
+/// eligible vertices moved (0.2 to 1) are drawn per seed; the local edge
+/// length of a vertex is the mean length of the mesh edges at it.
+/// Boundary-locked: 1 to 4 boundary vertices, no two in one hex, each moved
+/// to 1.2-1.8 times the way to the centre of a face of one of its hexes that
+/// does not hold it, and only kept where that hex ends inverted.
+static Stress_draw perturb_for_stress(Mesh& m, Stress_mode mode, unsigned seed)
+{
+  std::seed_seq sq{seed, unsigned(mode) + 1u};
+  std::mt19937 rng(sq);
+  std::uniform_real_distribution<double> u01(0., 1.);
+  std::normal_distribution<double> g(0., 1.);
+  const std::size_t nv = m.points.size();
+  std::vector<double> sum(nv, 0.);
+  std::vector<int> count(nv, 0);
+  static const int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for(const auto& h : m.hexahedra)
+    for(const auto& e : edges)
+    {
+      const double l = std::sqrt(CGAL::squared_distance(m.points[h[e[0]]], m.points[h[e[1]]]));
+      for(int k = 0; k < 2; ++k) { sum[h[e[k]]] += l; ++count[h[e[k]]]; }
+    }
+  std::vector<char> boundary(nv, 0);
+  for(std::size_t v : HMO::internal::extract_boundary(HMO::internal::make_hex_mesh_arrays(m, K())).vertices)
+    boundary[v] = 1;
+  Stress_draw d;
+  if(mode == stress_locked)
+  {
+    // the 6 faces of a hex (MEDIT/VTK corner order)
+    static const int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    std::vector<std::vector<std::size_t>> hexes_at(nv);
+    for(std::size_t h = 0; h < m.hexahedra.size(); ++h)
+      for(std::size_t v : m.hexahedra[h]) hexes_at[v].push_back(h);
+    std::vector<std::size_t> candidates;
+    for(std::size_t v = 0; v < nv; ++v) if(boundary[v]) candidates.push_back(v);
+    std::vector<char> blocked(nv, 0);
+    const int wanted = 1 + int(u01(rng) * 4.);
+    d.directions = "through a face";
+    d.fraction = 0.;
+    for(int attempt = 0; attempt < 200 && int(d.moved) < wanted && !candidates.empty(); ++attempt)
+    {
+      const std::size_t v = candidates[std::size_t(u01(rng) * candidates.size()) % candidates.size()];
+      const double depth = 1.2 + 0.6 * u01(rng);
+      if(blocked[v]) continue;
+      const std::size_t h = hexes_at[v][std::size_t(u01(rng) * hexes_at[v].size()) % hexes_at[v].size()];
+      const auto& hex = m.hexahedra[h];
+      std::vector<int> opposite;
+      for(int f = 0; f < 6; ++f)
+      {
+        bool holds = false;
+        for(int q = 0; q < 4; ++q) holds = holds || hex[faces[f][q]] == v;
+        if(!holds) opposite.push_back(f);
+      }
+      const int f = opposite[std::size_t(u01(rng) * opposite.size()) % opposite.size()];
+      K::Vector_3 c(0., 0., 0.);
+      for(int q = 0; q < 4; ++q) c = c + (m.points[hex[faces[f][q]]] - CGAL::ORIGIN);
+      const K::Point_3 centre = CGAL::ORIGIN + c / 4.;
+      const K::Point_3 old = m.points[v];
+      m.points[v] = old + depth * (centre - old);
+      if(!(scaled_jacobian_of(m, h) < 0.)) { m.points[v] = old; continue; }
+      for(std::size_t hh : hexes_at[v])
+        for(std::size_t w : m.hexahedra[hh]) blocked[w] = 1;
+      d.amplitude = (std::max)(d.amplitude, depth);
+      ++d.moved;
+    }
+    return d;
+  }
+  d.amplitude = 0.2 + 0.6 * u01(rng);
+  const int distribution = int(u01(rng) * 3.) % 3;
+  d.directions = distribution == 0 ? "sphere" : distribution == 1 ? "ball" : "anisotropic";
+  d.fraction = 0.2 + 0.8 * u01(rng);
+  // anisotropic: a random orthonormal frame, the second and third axes squashed
+  K::Vector_3 axes[3] = {K::Vector_3(1, 0, 0), K::Vector_3(0, 1, 0), K::Vector_3(0, 0, 1)};
+  double squash[3] = {1., 1., 1.};
+  if(distribution == 2)
+  {
+    K::Vector_3 a(g(rng), g(rng), g(rng)), b(g(rng), g(rng), g(rng));
+    a = a / std::sqrt(a.squared_length());
+    b = b - (b * a) * a;
+    b = b / std::sqrt(b.squared_length());
+    axes[0] = a; axes[1] = b; axes[2] = CGAL::cross_product(a, b);
+    squash[1] = 0.05 + 0.45 * u01(rng);
+    squash[2] = 0.05 + 0.45 * u01(rng);
+  }
+  for(std::size_t v = 0; v < nv; ++v)
+  {
+    // drawn for every vertex, moved or not: the draws of a vertex do not depend on the mode
+    const double pick = u01(rng), radius = u01(rng);
+    K::Vector_3 dir(g(rng), g(rng), g(rng));
+    if(count[v] == 0 || (mode == stress_interior && boundary[v]) || pick >= d.fraction) continue;
+    if(distribution == 2) dir = squash[0] * dir.x() * axes[0] + squash[1] * dir.y() * axes[1] + squash[2] * dir.z() * axes[2];
+    const double n = std::sqrt(dir.squared_length());
+    if(!(n > 0.)) continue;
+    const double length = distribution == 0 ? 1. : std::cbrt(radius);
+    m.points[v] = m.points[v] + (d.amplitude * length * sum[v] / count[v] / n) * dir;
+    ++d.moved;
+  }
+  return d;
 }
 
 /// An n×n×n grid of the unit cube (edge 1/n), vertex i + (n+1)(j + (n+1)k) at
@@ -636,22 +747,6 @@ static int benchmark_rows(const std::string& dir, bool untangle_only, const std:
 // ---------------------------------------------------------------------------
 // --stress
 
-/// One line of the stress table: the runs of one mesh in one mode.
-struct Stress_line
-{
-  int runs = 0, untangled = 0, above = 0;
-  std::size_t inverted_min = std::size_t(-1), inverted_max = 0;
-  double msj_min = 2., worst_error = 0.;
-  std::vector<double> msj, seconds;
-};
-
-static double median_of(std::vector<double> v)
-{
-  if(v.empty()) return 0.;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 /// `name` (a path under the data folder) as a file name stem: "low-quality/cat_2.mesh" -> "low-quality_cat_2"
 static std::string stem_of(const std::string& name)
 {
@@ -670,7 +765,8 @@ public:
     if(m_dir.empty()) return;
     m_runs.open(m_dir + "/stress_runs.tsv");
     m_runs << std::setprecision(10); // as the tool's --report
-    m_runs << "input\treference\tamplitude\tinverted_in\tinverted_out\tmsj_out\tasj_out\tsurface_error\tseconds\n";
+    m_runs << "input\treference\tamplitude\tinverted_in\tinverted_out\tmsj_out\tasj_out\tsurface_error\tseconds"
+              "\tdirections\tfraction_moved\tvertices_moved\n";
   }
   bool enabled() const { return !m_dir.empty(); }
   bool good() const { return !enabled() || bool(m_runs); }
@@ -685,22 +781,21 @@ public:
   }
 
   /// writes the perturbed input of a run; returns its path
-  std::string write_input(const std::string& name, bool interior_only, int seed, const Mesh& mesh)
+  std::string write_input(const std::string& name, const std::string& mode, int seed, const Mesh& mesh)
   {
-    const std::string path =
-      m_dir + "/" + stem_of(name) + (interior_only ? "_interior" : "_all") + "_seed" + std::to_string(seed) + ".mesh";
+    const std::string path = m_dir + "/" + stem_of(name) + "_" + mode + "_seed" + std::to_string(seed) + ".mesh";
     CGAL::IO::Hex_mesh_io_error err;
     if(!CGAL::IO::write_hex_mesh(path, mesh, CGAL::IO::Hex_mesh_fields(), &err))
       std::cerr << "benchmark_hex_mesh_optimization: " << err.what() << "\n";
     return path;
   }
 
-  void add_run(const std::string& input, const std::string& reference, double amplitude,
+  void add_run(const std::string& input, const std::string& reference, const Stress_draw& draw,
                const HMO::Optimization_result& r)
   {
-    m_runs << input << '\t' << reference << '\t' << amplitude << '\t' << r.inverted_before << '\t'
+    m_runs << input << '\t' << reference << '\t' << draw.amplitude << '\t' << r.inverted_before << '\t'
            << r.inverted_after << '\t' << r.msj_after << '\t' << r.asj_after << '\t' << r.surface_error << '\t'
-           << r.seconds << std::endl;
+           << r.seconds << '\t' << draw.directions << '\t' << draw.fraction << '\t' << draw.moved << std::endl;
   }
 
 private:
@@ -708,14 +803,66 @@ private:
   std::ofstream m_runs;
 };
 
-/// The stress sets: every valid shared mesh, perturbed by
-/// `perturb_by_local_edge` with `seeds` seeds per mode (interior vertices
-/// only, every vertex), amplitudes spread evenly over 0.3 to 0.8 of the
-/// local edge length, then optimised by `CGAL::optimize_hex_mesh` with the
-/// unperturbed boundary as reference surface and the default tolerance
-/// (0.005). One line per mesh and mode: runs ending with 0 inverted, runs
-/// whose MSJ ends at or above the unperturbed mesh's, the worst surface
-/// error (against the unperturbed boundary), the optimiser's time.
+/// the valid meshes of the shared data that the stress sets perturb
+static const std::vector<std::string>& stress_meshes()
+{
+  static const std::vector<std::string> meshes = {
+    "stress-base/fandisk.vtk", "stress-base/hanger.vtk", "stress-base/kitty.vtk",
+    "amips/rockerarm_li12.vtk", "amips/fertility_gregson11.mesh",
+    "low-quality/kitten_with_bifur_2.mesh", "low-quality/cat_2.mesh", "low-quality/Dolphin_2.mesh",
+    "edge-cone/published/block_edgecone.mesh", "edge-cone/published/bust_edgecone.mesh",
+    "edge-cone/published/cap_edgecone.mesh", "edge-cone/published/hanger_stresstest_edgecone.mesh",
+    "edge-cone/published/impeller_stresstest_edgecone.mesh", "edge-cone/published/bunny_edgecone.mesh",
+    "hexopt/published/mid2FemOpt.vtk"};
+  return meshes;
+}
+
+/// the q-quantile of `v` (nearest rank)
+static double quantile_of(std::vector<double> v, double q)
+{
+  if(v.empty()) return 0.;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
+/// One line of the stress table: runs of one mesh in one mode, or of all.
+struct Stress_totals
+{
+  int runs = 0, untangled = 0, within = 0, above = 0;
+  std::size_t inverted_min = std::size_t(-1), inverted_max = 0;
+  std::vector<double> msj, error, seconds_per_10k;
+  double seconds = 0.;
+
+  void add(const HMO::Optimization_result& r, double msj0, std::size_t hexes, double seconds_run, double tolerance)
+  {
+    ++runs;
+    if(r.inverted_after == 0) ++untangled;
+    if(r.surface_error <= tolerance) ++within;
+    if(r.msj_after >= msj0) ++above;
+    inverted_min = (std::min)(inverted_min, r.inverted_before);
+    inverted_max = (std::max)(inverted_max, r.inverted_before);
+    msj.push_back(r.msj_after);
+    error.push_back(r.surface_error);
+    seconds_per_10k.push_back(seconds_run * 1e4 / double(hexes));
+    seconds += seconds_run;
+  }
+
+  std::string pct(int n) const
+  {
+    char b[48];
+    std::snprintf(b, sizeof b, "%d (%.0f %%)", n, runs ? 100. * n / runs : 0.);
+    return b;
+  }
+};
+
+/// The stress sets: every valid mesh of the shared data (`stress_meshes()`)
+/// × the three modes (`Stress_mode`) × `seeds` draws
+/// (`perturb_for_stress`), each optimised by `CGAL::optimize_hex_mesh` with
+/// the unperturbed boundary as reference and the default tolerance (0.005),
+/// timed from the call to its return. One line per mesh and mode, then the
+/// totals per mode and of the whole set: pass rates (0 inverted; surface
+/// error within the tolerance; MSJ at or above the unperturbed mesh's), the
+/// MSJ and error distributions, the time per 10k hexes.
 static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads,
                        const std::string& write_dir)
 {
@@ -725,21 +872,24 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
     std::cerr << "benchmark_hex_mesh_optimization: cannot write " << write_dir << "/stress_runs.tsv\n";
     return 1;
   }
-  const std::vector<std::string> meshes = {
-    "stress-base/fandisk.vtk", "stress-base/hanger.vtk", "stress-base/kitty.vtk",
-    "amips/rockerarm_li12.vtk", "amips/fertility_gregson11.mesh",
-    "low-quality/kitten_with_bifur_2.mesh", "low-quality/cat_2.mesh", "low-quality/Dolphin_2.mesh",
-    "edge-cone/published/block_edgecone.mesh", "edge-cone/published/bust_edgecone.mesh",
-    "edge-cone/published/cap_edgecone.mesh", "edge-cone/published/hanger_stresstest_edgecone.mesh",
-    "edge-cone/published/impeller_stresstest_edgecone.mesh", "edge-cone/published/bunny_edgecone.mesh"};
-  std::cout << "Stress sets: " << seeds << " seeds per mode, amplitude 0.3 to 0.8 of the local edge length, "
-            << "reference = the unperturbed boundary, surface tolerance 0.005\n\n"
-            << "| mesh | mode | hexes | MSJ unperturbed | runs | 0 inverted | MSJ ≥ unperturbed | inverted in | "
-               "MSJ out min / median | worst surface error | optimiser s median / max |\n"
-            << "|---|---|---:|---:|---:|---:|---:|---|---|---:|---|\n";
-  Stress_line total[2];
+  const double tolerance = 0.005;
+  std::cout << "Stress sets: " << seeds << " seeds per mesh and mode (amplitude, directions and share of vertices "
+            << "drawn per seed), reference = the unperturbed boundary, surface tolerance " << tolerance << "\n\n"
+            << "| mesh | mode | hexes | MSJ unperturbed | runs | 0 inverted | MSJ ≥ unperturbed | error ≤ tolerance | "
+               "inverted in | MSJ out min / median | error median / max | s per 10k hexes median / max |\n"
+            << "|---|---|---:|---:|---:|---:|---:|---:|---|---|---|---|\n";
+  Stress_totals total[4];
   const Thread_limit limit(threads);
-  for(const std::string& name : meshes)
+  auto line_of = [&](const Stress_totals& t) {
+    char b[512];
+    std::snprintf(b, sizeof b, "%d | %s | %s | %s | %zu–%zu | %.3f / %.3f | %.4f / %.4f | %.2f / %.2f |", t.runs,
+                  t.pct(t.untangled).c_str(), t.pct(t.above).c_str(), t.pct(t.within).c_str(),
+                  t.runs ? t.inverted_min : 0, t.inverted_max, quantile_of(t.msj, 0.), quantile_of(t.msj, 0.5),
+                  quantile_of(t.error, 0.5), quantile_of(t.error, 1.), quantile_of(t.seconds_per_10k, 0.5),
+                  quantile_of(t.seconds_per_10k, 1.));
+    return std::string(b);
+  };
+  for(const std::string& name : stress_meshes())
   {
     if(!only.empty() && name.find(only) == std::string::npos) continue;
     Mesh base;
@@ -753,50 +903,167 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
     HMO::internal::Triangle_surface reference;
     HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
     const std::string reference_path = writer.enabled() ? writer.write_reference(name, reference) : std::string();
-    for(int mode = 0; mode < 2; ++mode)
+    for(int mode = 0; mode < 3; ++mode)
     {
-      Stress_line line;
+      Stress_totals line;
       for(int k = 0; k < seeds; ++k)
       {
-        const double amplitude = seeds > 1 ? 0.3 + 0.5 * k / (seeds - 1) : 0.55;
         Mesh mesh = base;
-        perturb_by_local_edge(mesh, amplitude, unsigned(k + 1), mode == 0);
-        const std::string input_path = writer.enabled() ? writer.write_input(name, mode == 0, k + 1, mesh) : std::string();
+        const Stress_draw draw = perturb_for_stress(mesh, Stress_mode(mode), unsigned(k + 1));
+        const std::string input_path =
+          writer.enabled() ? writer.write_input(name, stress_mode_files[mode], k + 1, mesh) : std::string();
         Setup_visitor visitor;
-        const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
-        if(writer.enabled()) writer.add_run(input_path, reference_path, amplitude, r);
-        for(Stress_line* l : {&line, &total[mode]})
-        {
-          ++l->runs;
-          if(r.inverted_after == 0) ++l->untangled;
-          if(r.msj_after >= msj0) ++l->above;
-          l->inverted_min = (std::min)(l->inverted_min, r.inverted_before);
-          l->inverted_max = (std::max)(l->inverted_max, r.inverted_before);
-          l->msj_min = (std::min)(l->msj_min, r.msj_after);
-          l->worst_error = (std::max)(l->worst_error, r.surface_error);
-          l->msj.push_back(r.msj_after);
-          l->seconds.push_back(r.seconds);
-        }
+        const Clock::time_point start = Clock::now();
+        const HMO::Optimization_result r = run_optimiser(mesh, false, reference, tolerance, visitor);
+        const double seconds = seconds_since(start);
+        if(writer.enabled()) writer.add_run(input_path, reference_path, draw, r);
+        for(Stress_totals* t : {&line, &total[mode], &total[3]}) t->add(r, msj0, base.hexahedra.size(), seconds, tolerance);
       }
-      char b[512];
-      std::snprintf(b, sizeof b, "| %s | %s | %zu | %.3f | %d | %d | %d | %zu–%zu | %.3f / %.3f | %.4f | %.1f / %.1f |",
-                    name.c_str(), mode == 0 ? "interior" : "all vertices", base.hexahedra.size(), msj0, line.runs,
-                    line.untangled, line.above, line.inverted_min, line.inverted_max, line.msj_min,
-                    median_of(line.msj), line.worst_error, median_of(line.seconds),
-                    *std::max_element(line.seconds.begin(), line.seconds.end()));
-      std::cout << b << std::endl;
+      char head[256];
+      std::snprintf(head, sizeof head, "| %s | %s | %zu | %.3f | ", name.c_str(), stress_mode_names[mode],
+                    base.hexahedra.size(), msj0);
+      std::cout << head << line_of(line) << std::endl;
     }
   }
-  for(int mode = 0; mode < 2; ++mode)
+  for(int mode = 0; mode < 4; ++mode)
+    if(total[mode].runs > 0)
+      std::cout << "| **all** | " << (mode < 3 ? stress_mode_names[mode] : "**every mode**") << " | | | "
+                << line_of(total[mode]) << "\n";
+  if(total[3].runs > 0)
   {
-    const Stress_line& t = total[mode];
-    if(t.runs == 0) continue;
-    std::printf("| **all** | %s | | | %d | %d (%.0f %%) | %d (%.0f %%) | | %.3f / – | %.4f | %.1f / %.1f |\n",
-                mode == 0 ? "interior" : "all vertices", t.runs, t.untangled, 100. * t.untangled / t.runs, t.above,
-                100. * t.above / t.runs, t.msj_min, t.worst_error, median_of(t.seconds),
-                *std::max_element(t.seconds.begin(), t.seconds.end()));
+    const Stress_totals& t = total[3];
+    char b[1024];
+    std::snprintf(b, sizeof b, "\nDistributions over the %d runs (quantiles 0 / 0.1 / 0.5 / 0.9 / 1): MSJ out %.3f / %.3f / %.3f / "
+                "%.3f / %.3f; surface error %.4f / %.4f / %.4f / %.4f / %.4f; s per 10k hexes %.2f / %.2f / %.2f / "
+                "%.2f / %.2f; %.0f s in all\n",
+                t.runs, quantile_of(t.msj, 0.), quantile_of(t.msj, 0.1), quantile_of(t.msj, 0.5),
+                quantile_of(t.msj, 0.9), quantile_of(t.msj, 1.), quantile_of(t.error, 0.), quantile_of(t.error, 0.1),
+                quantile_of(t.error, 0.5), quantile_of(t.error, 0.9), quantile_of(t.error, 1.),
+                quantile_of(t.seconds_per_10k, 0.), quantile_of(t.seconds_per_10k, 0.1),
+                quantile_of(t.seconds_per_10k, 0.5), quantile_of(t.seconds_per_10k, 0.9),
+                quantile_of(t.seconds_per_10k, 1.), t.seconds);
+    std::cout << b;
   }
   std::cout << std::flush;
+  return 0;
+}
+
+// ---------------------------------------------------------------------------
+// --ablate
+
+/// A variant of the default pipeline: one stage turned off.
+struct Ablation
+{
+  std::string name;
+  std::function<void(HMO::internal::Optimization_schedule&, bool& pull_back)> change;
+};
+
+static std::vector<Ablation> ablations()
+{
+  typedef HMO::internal::Optimization_schedule S;
+  return {
+    {"default", [](S&, bool&) {}},
+    {"no interior barrier", [](S& s, bool&) { s.interior_stage = false; }},
+    {"no edge-angle untangling", [](S& s, bool&) { s.edge_angle_stage = false; }},
+    {"no barrier untangling", [](S& s, bool&) { s.barrier_stage = false; }},
+    {"no untangler surface pass", [](S& s, bool&) { s.surface_stage = false; }},
+    {"no untangle-again rounds", [](S& s, bool&) { s.untangle_again_rounds = 0; }},
+    {"no SLIM pull-back", [](S&, bool& p) { p = false; }},
+    {"no surface fit", [](S& s, bool&) { s.surface_fitting = false; }},
+    {"no restoration", [](S& s, bool&) { s.restoration = false; }},
+    {"no coarse-level start", [](S& s, bool&) { s.coarse_level_start = false; }},
+    {"no max-min smoothing", [](S& s, bool&) { s.msj_stage_max_min = false; }},
+    {"no turns", [](S& s, bool&) { s.max_turns = 0; }},
+    {"no global ASJ start", [](S& s, bool&) { s.final_asj_global_iterations = 0; }},
+    {"no final ASJ smoothing", [](S& s, bool&) { s.asj_passes = 0; s.final_asj_global_iterations = 0; }}};
+}
+
+/// What one variant did over the set.
+struct Ablation_totals
+{
+  int rows = 0, rows_met = 0; // the published rows: MSJ ≥ Xu & Chen's with the error ≤ theirs
+  double rows_seconds = 0.;
+  std::vector<double> row_msj;
+  Stress_totals stress;
+};
+
+/// `--ablate`: the default pipeline, then without each stage in turn
+/// (`ablations()`, or those whose name contains `variant`), over the 8
+/// published rows (whole tool runs, the published error as tolerance) and
+/// the stress sets (`seeds` per mesh and mode). A stage earns its place when
+/// its removal costs: fewer rows met, fewer stress runs untangled or within
+/// the tolerance, lower MSJ. One line per variant.
+static int ablate(const std::string& dir, const std::string& only, const std::string& variant, int seeds,
+                  int threads)
+{
+  const auto published = read_published(HMO_PUBLISHED_CSV);
+  const std::vector<std::string> rows = {
+    "edge-cone/block_in.mesh", "edge-cone/bunny_in.mesh", "edge-cone/bust_in.mesh", "edge-cone/cap_in.mesh",
+    "edge-cone/hanger_stresstest_in.mesh", "edge-cone/impeller_stresstest_in.mesh", "amips/rockerarm_li12.vtk",
+    "amips/fertility_gregson11.mesh"};
+  std::cout << "Ablation: the 8 published rows (tolerance: the paper's error) and the stress sets (" << seeds
+            << " seeds per mesh and mode, tolerance 0.005)\n\n"
+            << "| variant | rows: MSJ ≥ published, error ≤ published | rows: MSJ each | rows s | stress runs | "
+               "0 inverted | error ≤ 0.005 | MSJ ≥ unperturbed | MSJ min / median | error median / max | stress s |\n"
+            << "|---|---:|---|---:|---:|---:|---:|---:|---|---|---:|\n";
+  const Thread_limit limit(threads);
+  for(const Ablation& a : ablations())
+  {
+    if(!variant.empty() && a.name != "default" && a.name.find(variant) == std::string::npos) continue;
+    g_schedule = HMO::internal::Optimization_schedule();
+    g_pull_back = true;
+    a.change(g_schedule, g_pull_back);
+    Ablation_totals t;
+    std::string row_msj;
+    for(const std::string& name : rows)
+    {
+      if(!only.empty() && name.find(only) == std::string::npos) continue;
+      const auto it = published.find(name);
+      double tolerance = 0.005;
+      if(it != published.end() && !it->second.row[9].empty()) tolerance = std::stod(it->second.row[9]);
+      const Row_run run = run_row(dir, name, false, false, nullptr, tolerance, false, threads, false);
+      if(!run.error.empty()) { std::cout << "| " << a.name << " | " << name << ": " << run.error << " |\n"; continue; }
+      const HMO::Optimization_result& r = run.result;
+      const double paper_msj = it != published.end() && !it->second.row[7].empty() ? std::stod(it->second.row[7]) : 2.;
+      ++t.rows;
+      if(r.inverted_after == 0 && r.msj_after >= paper_msj && r.surface_error <= tolerance) ++t.rows_met;
+      t.rows_seconds += run.seconds;
+      char b[32];
+      std::snprintf(b, sizeof b, "%s%.3f", row_msj.empty() ? "" : " ", r.msj_after);
+      row_msj += b;
+    }
+    for(const std::string& name : stress_meshes())
+    {
+      if(!only.empty() && name.find(only) == std::string::npos) continue;
+      Mesh base;
+      CGAL::IO::Hex_mesh_io_error err;
+      if(!CGAL::IO::read_hex_mesh(dir + "/" + name, base, &err)) continue;
+      const double msj0 = CGAL::hex_mesh_quality(base).msj;
+      HMO::internal::Triangle_surface reference;
+      HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
+      for(int mode = 0; mode < 3; ++mode)
+        for(int k = 0; k < seeds; ++k)
+        {
+          Mesh mesh = base;
+          perturb_for_stress(mesh, Stress_mode(mode), unsigned(k + 1));
+          Setup_visitor visitor;
+          const Clock::time_point start = Clock::now();
+          const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
+          t.stress.add(r, msj0, base.hexahedra.size(), seconds_since(start), 0.005);
+        }
+    }
+    char line[1024];
+    std::snprintf(line, sizeof line, "| %s | %d of %d | %s | %.1f | ", a.name.c_str(), t.rows_met, t.rows,
+                  row_msj.c_str(), t.rows_seconds);
+    const Stress_totals& st = t.stress;
+    char tail[512];
+    std::snprintf(tail, sizeof tail, "%d | %s | %s | %s | %.3f / %.3f | %.4f / %.4f | %.1f |", st.runs,
+                  st.pct(st.untangled).c_str(), st.pct(st.within).c_str(), st.pct(st.above).c_str(),
+                  quantile_of(st.msj, 0.), quantile_of(st.msj, 0.5), quantile_of(st.error, 0.5),
+                  quantile_of(st.error, 1.), st.seconds);
+    std::strncat(line, tail, sizeof line - std::strlen(line) - 1);
+    std::cout << line << std::endl;
+  }
   return 0;
 }
 
@@ -1006,6 +1273,66 @@ static int scaling(const std::string& dir, bool have_data, bool untangle_only, c
 
 // ---------------------------------------------------------------------------
 
+// ---------------------------------------------------------------------------
+// --results FILE: the tables also go into a section of a Markdown file
+
+/// A stream buffer that writes to two others: the console and a copy.
+class Tee_buffer : public std::streambuf
+{
+public:
+  Tee_buffer(std::streambuf* a, std::streambuf* b) : a_(a), b_(b) {}
+
+protected:
+  int overflow(int c) override
+  {
+    if(c == traits_type::eof()) return traits_type::not_eof(c);
+    const bool ok = a_->sputc(char(c)) != traits_type::eof() && b_->sputc(char(c)) != traits_type::eof();
+    return ok ? c : traits_type::eof();
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override
+  {
+    const std::streamsize written = a_->sputn(s, n);
+    b_->sputn(s, n);
+    return written;
+  }
+  int sync() override { return a_->pubsync() == 0 && b_->pubsync() == 0 ? 0 : -1; }
+
+private:
+  std::streambuf* a_;
+  std::streambuf* b_;
+};
+
+/// Replaces, in the Markdown file `path`, the text between the lines
+/// "<!-- begin NAME -->" and "<!-- end NAME -->" by `table` (the section is
+/// appended when absent), so that the benchmark rewrites its own tables and
+/// leaves the rest of the file alone. Written through a temporary renamed in
+/// place.
+static bool write_results_section(const std::string& path, const std::string& name, const std::string& command,
+                                  const std::string& table)
+{
+  std::string text;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if(in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string begin = "<!-- begin " + name + " -->\n", end = "<!-- end " + name + " -->\n";
+  const std::string section = begin + "Written by `" + command + "`.\n\n" + table + (table.empty() || table.back() == '\n' ? "" : "\n") + end;
+  const std::size_t b = text.find(begin), e = b == std::string::npos ? b : text.find(end, b);
+  if(b != std::string::npos && e != std::string::npos) text.replace(b, e + end.size() - b, section);
+  else text += (text.empty() || text.back() == '\n' ? "\n" : "\n\n") + section;
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    if(!out.flush())
+    {
+      std::remove(tmp.c_str());
+      return false;
+    }
+  }
+  return std::rename(tmp.c_str(), path.c_str()) == 0;
+}
+
 static void usage(std::ostream& out)
 {
   out << "usage: benchmark_hex_mesh_optimization [DATA_DIR] [--untangle] [--only SUBSTRING]\n"
@@ -1019,10 +1346,17 @@ static void usage(std::ostream& out)
          "  --threads-compare      every row under 1 and under 2 threads; times and output hashes\n"
          "  --scaling              generated grids (125k, 1M hexes) and refined fertility (159k, 1.27M)\n"
          "  --scaling-max-hexes N  with --scaling, skip the cases of more than N hexes\n"
-         "  --stress               stress sets: every valid shared mesh perturbed (interior / all vertices)\n"
-         "  --stress-seeds N       with --stress, N perturbations per mesh and mode (default 5)\n"
+         "  --stress               stress sets: every valid shared mesh perturbed (interior / all vertices /\n"
+         "                         boundary-locked)\n"
+         "  --stress-seeds N       with --stress or --ablate, N draws per mesh and mode (default 10)\n"
          "  --stress-write DIR     with --stress, write each perturbed input, the reference surfaces and\n"
          "                         a line per run (stress_runs.tsv) into the existing folder DIR\n"
+         "  --ablate               the default pipeline, then without each stage in turn, over the 8\n"
+         "                         published rows and the stress sets (--stress-seeds per mesh and mode)\n"
+         "  --ablate-only NAME     with --ablate, the default and the variants whose name contains NAME\n"
+         "  --variant NAME         the first of --ablate's variants whose name contains NAME, in any mode\n"
+         "  --results FILE         also write the tables into FILE (Markdown), replacing the section of\n"
+         "                         this mode (rows, untangle, scaling, stress or ablation) and keeping the rest\n"
          "DATA_DIR defaults to " HMO_SHARED_DATA_DIR "\n";
 }
 
@@ -1040,8 +1374,9 @@ int main(int argc, char** argv)
 {
   std::string dir = HMO_SHARED_DATA_DIR, only;
   bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false, paper_column = true;
-  long long threads = 0, max_hexes = 0, stress_seeds = 5;
-  std::string stress_write;
+  long long threads = 0, max_hexes = 0, stress_seeds = 10;
+  std::string stress_write, ablate_variant, results, variant;
+  bool ablate_mode = false;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -1060,6 +1395,8 @@ int main(int argc, char** argv)
     }
     else if(a == "--scaling") scaling_mode = true;
     else if(a == "--stress") stress_mode = true;
+    else if(a == "--ablate") ablate_mode = true;
+    else if(a == "--ablate-only" && has_value) ablate_variant = argv[++i];
     else if(a == "--stress-seeds" && has_value)
     {
       if(!parse_count(argv[++i], 1, stress_seeds))
@@ -1069,6 +1406,8 @@ int main(int argc, char** argv)
       }
     }
     else if(a == "--stress-write" && has_value) stress_write = argv[++i];
+    else if(a == "--results" && has_value) results = argv[++i];
+    else if(a == "--variant" && has_value) variant = argv[++i];
     else if(a == "--scaling-max-hexes" && has_value)
     {
       if(!parse_count(argv[++i], 1, max_hexes))
@@ -1116,23 +1455,76 @@ int main(int argc, char** argv)
   if(threads_compare) thread_runs = {1, 2};
   else thread_runs = {int(threads)};
 
+  if(!variant.empty())
+  {
+    // one of --ablate's variants, for any mode
+    bool found = false;
+    for(const Ablation& a : ablations())
+      if(a.name != "default" && a.name.find(variant) != std::string::npos && !found)
+      {
+        a.change(g_schedule, g_pull_back);
+        std::cout << "variant: " << a.name << "\n";
+        found = true;
+      }
+    if(!found)
+    {
+      std::cerr << "benchmark_hex_mesh_optimization: --variant: no variant contains '" << variant << "'\n";
+      return 2;
+    }
+  }
+  if(stress_mode && threads_compare)
+  {
+    std::cerr << "benchmark_hex_mesh_optimization: --stress runs under one thread setting (--threads N)\n";
+    return 2;
+  }
   struct stat st;
   const bool have_data = ::stat((dir + "/README.md").c_str(), &st) == 0;
-  if(scaling_mode)
-    return scaling(dir, have_data, untangle_only, only, std::size_t(max_hexes), thread_runs);
-  if(!have_data)
+  if(!scaling_mode && !have_data)
   {
     std::cout << "shared data folder " << dir << " is absent: nothing to benchmark" << std::endl;
     return 0;
   }
-  if(stress_mode)
+
+  // with --results, everything printed to standard output is also kept
+  std::ostringstream copy;
+  Tee_buffer tee(std::cout.rdbuf(), copy.rdbuf());
+  std::streambuf* const console = std::cout.rdbuf();
+  if(!results.empty()) std::cout.rdbuf(&tee);
+  int status = 0;
+  const char* section = "rows";
+  if(scaling_mode)
   {
-    if(threads_compare)
-    {
-      std::cerr << "benchmark_hex_mesh_optimization: --stress runs under one thread setting (--threads N)\n";
-      return 2;
-    }
-    return stress_sets(dir, only, int(stress_seeds), int(threads), stress_write);
+    section = "scaling";
+    status = scaling(dir, have_data, untangle_only, only, std::size_t(max_hexes), thread_runs);
   }
-  return benchmark_rows(dir, untangle_only, only, thread_runs, paper_column);
+  else if(ablate_mode)
+  {
+    section = "ablation";
+    status = ablate(dir, only, ablate_variant, int(stress_seeds), int(threads));
+  }
+  else if(stress_mode)
+  {
+    section = "stress";
+    status = stress_sets(dir, only, int(stress_seeds), int(threads), stress_write);
+  }
+  else
+  {
+    section = untangle_only ? "untangle" : "rows";
+    status = benchmark_rows(dir, untangle_only, only, thread_runs, paper_column);
+  }
+  std::cout.flush();
+  std::cout.rdbuf(console);
+  if(!results.empty() && status == 0)
+  {
+    std::string command = "benchmark_hex_mesh_optimization";
+    for(int i = 1; i < argc; ++i)
+      if(std::string(argv[i]) == "--results") ++i;
+      else if(argv[i] != dir) command += std::string(" ") + argv[i];
+    if(!write_results_section(results, section, command, copy.str()))
+    {
+      std::cerr << "benchmark_hex_mesh_optimization: cannot write " << results << "\n";
+      return 1;
+    }
+  }
+  return status;
 }

@@ -6,7 +6,8 @@
 # <prefix>_count, <prefix>_indices (the list 0 … count − 1) and, for each
 # run k (the header left out), <prefix>_<k>_<column> for the columns of the
 # file, in its order:
-set(stress_run_columns input reference amplitude inverted_in inverted_out msj_out asj_out surface_error seconds)
+set(stress_run_columns input reference amplitude inverted_in inverted_out msj_out asj_out surface_error seconds
+    directions fraction_moved vertices_moved)
 
 function(read_stress_runs file prefix)
   file(STRINGS ${file} lines)
