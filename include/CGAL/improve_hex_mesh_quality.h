@@ -75,9 +75,9 @@ inline void append_run(Optimization_result& first, const Optimization_result& la
 /// toward the surface, then the quality stages; a round is kept only if it
 /// leaves fewer elements inverted, with the surface error within
 /// max(tolerance, the error before it); a kept round is appended to `q`
-/// (`append_run`). All-vertex-perturbed
-/// kitten_with_bifur_2: the untangler run again on the pipeline's output
-/// freed 3 of 3, 2 of 3 and 0 of 1 inverted hexes on three seeds.
+/// (`append_run`). Why: once the quality stages have pulled the boundary
+/// back and reshaped the neighbourhood, the untangler can free elements it
+/// could not free from the input.
 template <class Visitor>
 void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& original, const Untangle_settings& u,
                                 const Quality_settings& s, Visitor& visitor, Optimization_result& q)
@@ -220,7 +220,7 @@ Sections 3.3 and 3.4 of Xu & Chen (2018) and the final smoothing:
   refinement (every hex split into 8, once or more) is optimised at its
   coarsest level of at least 4096 hexes first, and the stages below start
   from its displacement carried down trilinearly (not with `Method::paper`;
-  see the manual, "Coarse-level start");
+  see the manual, "Quality Improvement");
 - when the boundary is farther from the reference than `surface_tolerance`
   (after an untangling that relaxed it), an inversion-free pull-back brings it
   back (SLIM on the 9 Jacobian samples of each hex, flip-avoiding line search);
@@ -269,12 +269,12 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{150}
   \cgalParamNEnd
   \cgalParamNBegin{crease_seed_angle}
-    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. 150 takes the corners of block_in from 186 to 16; the manual's implementation notes have what it changes on the published rows and the stress sets; in [0, 180] (`std::invalid_argument` otherwise)}
+    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. It is off by default because its gains and losses are spread over the published rows and the stress set (the benchmark's RESULTS.md has both); in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{180}
   \cgalParamNEnd
   \cgalParamNBegin{turn_focus_band}
-    \cgalParamDescription{the turns of max-min and ASJ smoothing before the final ASJ smoothing: each turn's ASJ pass reshapes the neighbourhood of the elements below the MSJ plus this band, in (0, 1] (`std::invalid_argument` otherwise). The default meets the package's time targets on the published rows; 0.2 reaches a higher MSJ for more time (tool runs at the default tolerance: bunny_in 0.744 in 6.8 s instead of 0.679 in 5.0 s, fertility_gregson11 0.752 in 3.7 s instead of 0.719 in 2.8 s; the manual's Schedule section has the 8 rows with both)}
+    \cgalParamDescription{the turns of max-min and ASJ smoothing before the final ASJ smoothing: each turn's ASJ pass reshapes the neighbourhood of the elements below the MSJ plus this band, in (0, 1] (`std::invalid_argument` otherwise). The default meets the package's time targets on the published rows; 0.2 reaches a higher MSJ for more time (the benchmark's RESULTS.md has the published rows with both)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.15}
   \cgalParamNEnd
@@ -304,7 +304,7 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{coarse_level_start}
-    \cgalParamDescription{whether a mesh without inverted elements that its connectivity shows to be a 1→8 refinement (every hex split into 8, once or more) is optimised at its coarsest level of at least 4096 hexes first, the stages then starting from that level's displacement carried down trilinearly (fertility_gregson11 refined twice: MSJ 0.762 instead of 0.607; see the manual)}
+    \cgalParamDescription{whether a mesh without inverted elements that its connectivity shows to be a 1→8 refinement (every hex split into 8, once or more) is optimised at its coarsest level of at least 4096 hexes first, the stages then starting from that level's displacement carried down trilinearly: on a finely refined mesh the turns end in a local optimum that a coarse vertex's move, which shifts many fine layers at once, avoids}
     \cgalParamType{`bool`}
     \cgalParamDefault{`true`, `false` with `Method::paper`}
   \cgalParamNEnd

@@ -83,7 +83,7 @@ struct Exodus_file
 };
 
 /// A classic netCDF file cut short reads as zeros past its end, without an
-/// error (measured with libnetcdf 4.9 and libexodusii 6.02): the file must
+/// error (so libnetcdf 4.9 and libexodusii 6.02 behave): the file must
 /// be at least as long as its variables. (netCDF-4 files are HDF5 files,
 /// which detect truncation themselves, and may be compressed.)
 inline bool netcdf_file_complete(int ncid, const std::string& fname, std::string& why)

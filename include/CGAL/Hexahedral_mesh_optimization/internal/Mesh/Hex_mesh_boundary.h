@@ -19,8 +19,8 @@
 //   (invalid, non-manifold volume) are counted in `number_of_overshared_faces`
 //   and treated as interior.
 // - The faces are matched by sorting their keys rather than hashing them:
-//   as fast for these sizes (~25 ms for 40k hexes), and the output order (by
-//   hexahedron, then by local face) is deterministic.
+//   as fast, and the output order (by hexahedron, then by local face) is
+//   deterministic.
 // - A boundary edge shared by exactly two boundary quads is manifold; one
 //   shared by 4 (two hexes touching along an edge only) or by an odd number
 //   (impossible for a closed boundary, possible for broken input) has no

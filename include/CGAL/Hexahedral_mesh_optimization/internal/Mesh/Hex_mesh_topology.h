@@ -35,8 +35,8 @@ namespace internal {
 class Hex_mesh_topology
 {
 public:
-  /// (hex, local corner) incidence; 32-bit: the 8 corners of 1M hexes take
-  /// 64 MB instead of 128 (filling fresh memory is much of the set-up)
+  /// (hex, local corner) incidence; 32-bit, half the memory of 64-bit
+  /// indices (filling fresh memory is much of the set-up)
   struct Corner { std::uint32_t hex; std::int32_t local; };
 
   /// \pre fewer than 2^32 vertices and 2^28 hexes (12 edges each: the 32-bit indices inside)
@@ -148,7 +148,7 @@ private:
   }
 
   // The edges, without hashing (a hash map of the 12 edges of every hex
-  // took 2.5 s of a 1M-hex grid's 3.1 s set-up): the neighbours above each
+  // dominates the set-up of a large mesh): the neighbours above each
   // vertex, sorted (`m_upper_off`, `m_upper`), give every edge a place
   // (a, b > a) -> its index in that list; the edge ids are then handed out in
   // the order the hexes first meet the edges. The first meeting of a place
@@ -291,7 +291,7 @@ private:
   void build_boundary()
   {
     // the faces that occur once: the boundary structure's own face matching
-    // (sorted face keys; a hash map of 6 faces per hex cost 1.5 s at 1M hexes)
+    // (sorted face keys, cheaper than a hash map of 6 faces per hex)
     m_boundary = extract_boundary(m_hexes, m_nv);
     m_boundary_faces = m_boundary.quads;
     // deterministic order, independent of the hexes' order

@@ -19,7 +19,7 @@
 // without contradiction, with 8 hexes around every cell centre, gives the
 // coarse mesh: the corners of the 8 children around each cell centre.
 // Used by the pipeline's coarse-level start (`coarse_level_start` in
-// improve_hex_mesh_quality.h; the manual's Schedule section says why).
+// improve_hex_mesh_quality.h, Coarse_level_start.h says why).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>

@@ -9,8 +9,8 @@
 // The faces of a hex mesh grouped by their vertices: which hexes share a
 // face, which faces are on the boundary, which are shared by more than two.
 // The 6 n faces are bucketed by their smallest vertex (a counting sort, linear)
-// and matched within each bucket, which holds a few faces: a global sort of
-// the faces, or a hash map of them, took seconds on a 1M-hex mesh.
+// and matched within each bucket, which holds a few faces: linear, where a
+// global sort of the faces is not, and without a hash map's scattered access.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
@@ -97,8 +97,7 @@ void for_each_face_group(const Hexahedra& hexes, std::size_t number_of_vertices,
 
 /// The same groups, the buckets on TBB's threads (when linked with it): the
 /// calls come in no particular order and concurrently, so `group` must only
-/// write what belongs to its own faces (e.g. a flag per face id). Half the
-/// face matching of a 1M-hex mesh's boundary extraction on 2 threads.
+/// write what belongs to its own faces (e.g. a flag per face id).
 template <class Hexahedra, class Group>
 void for_each_face_group_in_parallel(const Hexahedra& hexes, std::size_t number_of_vertices, Group group)
 {

@@ -11,8 +11,8 @@
 // first, and the fine level starts from the input moved by the coarse
 // level's displacement, carried down trilinearly. On a fine mesh the
 // max-min and ASJ turns end in a local optimum that a coarse level, whose
-// vertex moves shift many fine layers at once, avoids (the manual's
-// Schedule section has the figures; `Optimization_schedule::
+// vertex moves shift many fine layers at once, avoids (the figures are in
+// benchmark/Hexahedral_mesh_optimization/RESULTS.md; `Optimization_schedule::
 // coarse_level_start`).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Refinement_hierarchy.h>

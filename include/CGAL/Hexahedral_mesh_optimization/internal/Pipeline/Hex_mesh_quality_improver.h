@@ -33,8 +33,8 @@
 // Every stage ends on its own convergence test or work cap, all in
 // Optimization_schedule.h; the time limit is a hard stop only (Time_limit.h).
 // A turn or final smoothing stopped by it before its surface check is undone,
-// so the result is always a checked state. Why this order and these values
-// (measured): the manual's implementation notes.
+// so the result is always a checked state. The measurements behind this
+// order and these values: benchmark/Hexahedral_mesh_optimization/RESULTS.md.
 //
 // The surface tolerance: the paper bounds nothing and reports the error it
 // got; here the user gives a tolerance (relative to the reference's
@@ -92,9 +92,8 @@ struct Quality_settings
   /// work caps and convergence thresholds of every stage
   Optimization_schedule schedule;
   /// whether the surface restoration runs before the MSJ stages too (not
-  /// after a coarse-level start, whose boundary is where the coarse level
-  /// put it, within the tolerance: on the twice-refined fertility that
-  /// restoration moved no boundary vertex in 8 sweeps of 29 s)
+  /// after a coarse-level start, whose boundary the coarse level already
+  /// kept within the tolerance: there the restoration only costs time)
   bool restore_before_msj_stages = true;
   /// optional reference surface (model coordinates); default: the boundary of `original`
   const std::vector<Vec3>* reference_points = nullptr;
@@ -286,7 +285,6 @@ private:
   /// the runs again apply only when the error before the stages is within
   /// the tolerance (after an untangling that left the boundary off the
   /// surface they cannot cause an excess, and only hold the stages back).
-  /// See the manual.
   void msj_stages_with_retry(Run_state& st)
   {
     const Optimization_schedule& sc = m_s.schedule;
@@ -577,9 +575,9 @@ private:
 
   /// The max-min smoothing of the turns: toward the target itself rather
   /// than the next staged one, so that the elements within the band above the
-  /// MSJ are worked on however close the next stage's value is (bunny_in: a
-  /// turn's "msj>=0.5" stalled at 0.4996 on the few elements below 0.5 and
-  /// ended the turns; aimed at 1 the same turn reached 0.541).
+  /// MSJ are worked on however close the next stage's value is (aimed at a
+  /// value just above the MSJ, a turn can stall a hair below it on the few
+  /// elements left there, and that ends the turns).
   Quality_statistics max_min_stage(Run_state& st, const Quality_statistics& q, double guard_tolerance)
   {
     const auto t = Clock::now();
@@ -636,7 +634,7 @@ private:
   /// when the surface error is above the tolerance: kept only if it brings
   /// the error close to the tolerance (see below). With the input's own boundary as the reference the
   /// restoration moves the boundary vertices to their input positions,
-  /// where the error is 0 (bunny_dualsheet: the fit took 3.7 s and was not kept).
+  /// where the error is 0, so the fit is not run.
   void surface_fit_stage(Run_state& st)
   {
     if(!user_reference()) return;
@@ -656,10 +654,8 @@ private:
     const double error_after = measure_error(st);
     // kept when it removes at least `surface_fit_min_excess_cut` of the
     // error's excess over the tolerance: a fit that gets nowhere near the
-    // tolerance only takes the quality down (impeller_stresstest_edgecone,
-    // every vertex perturbed: 0.0118 -> 0.0089, and the MSJ ended above the
-    // unperturbed mesh's in 2 of 5 runs instead of 5), one that gets close
-    // lets the later stages finish (hanger seed 5: 0.0165 -> 0.0075, 0.0050 at the end)
+    // tolerance only takes the quality down, one that gets close lets the
+    // later stages finish the job
     const double tol = m_s.surface_tolerance;
     const bool kept = error_after < error_before &&
                       error_after - tol <= (1. - m_s.schedule.surface_fit_min_excess_cut) * (error_before - tol);
@@ -695,7 +691,7 @@ private:
   /// anchors are projections of the boundary as the untangler left it, and
   /// on a mesh whose boundary slid along a curved surface, or whose feature
   /// classification is noisy, reaching them can raise the Hausdorff
-  /// distance to the reference (impeller_stresstest: 0.0027 → 0.018).
+  /// distance to the reference.
   void pull_back_stage(Run_state& st)
   {
     const double error_before = measure_error(st);
@@ -739,8 +735,8 @@ private:
 
   /// Stages "msj>=t" for t = 0 (only if something is inverted), then
   /// `msj_stage_step`, 2 × that, … up to the target, each on what is below
-  /// t: max-min smoothing first (one vertex at a time, cheap: bunny_in MSJ
-  /// 0 → 0.4 in 0.5 s, where the edge-angle optimiser took 15 s), then, while
+  /// t: max-min smoothing first (one vertex at a time, far cheaper than a
+  /// global edge-angle solve for the same rise of the MSJ), then, while
   /// it falls short of t, edge-angle passes (Algorithm 1 with α, β ≥ 500,
   /// rollback under the stage's starting MSJ or beyond the guard), the
   /// boundary projected back, and max-min again, while a pass raises the MSJ
@@ -778,9 +774,9 @@ private:
         msj = now;
       };
       smooth();
-      // (even for a handful of elements: on fertility_gregson11 a pass on
-      // the last element below 0.7 did not fix it, but the max-min smoothing
-      // after it went from 0.691 to 0.697)
+      // (even for a handful of elements: an edge-angle pass that does not
+      // lift the last element below t can still open room for the max-min
+      // smoothing after it)
       for(int pass = 0; msj < t && pass < sc.msj_stage_edge_angle_passes && !stopped(); ++pass)
       {
         const double msj_pass = msj;
@@ -813,7 +809,7 @@ private:
     const Surface_guard& guard = *st.guard;
     // the ideal angles, when a pass first needs them (their boundary part,
     // the dihedral angles of Ω_t, does not change: the same whenever made;
-    // over a whole 1M-hex mesh they take seconds)
+    // they cost a pass over the whole mesh, which a run may not need)
     if(!st.ideal) st.ideal.reset(new Ideal_angles(ideal_angles_on_target(*st.topo, ts, st.mesh.points)));
     Local_optimizer opt(*st.topo, *st.ideal,
                         [&](const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc) {

@@ -75,9 +75,8 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
 /// elements, or as many and an MSJ lower by more than
 /// `msj_rounding_tolerance`: undoing the normalisation rounds the
 /// coordinates, which alone can move a stuck minimum by an ulp, and must not
-/// throw away what the stages gained elsewhere (rockerarm_li12 with the
-/// paper's method: MSJ 0.209 → 0.209, ASJ 0.866 → 0.93, and the input was
-/// returned).
+/// throw away what the stages gained elsewhere (a run whose MSJ stayed where
+/// it was but whose ASJ rose would otherwise return the input).
 inline Quality_statistics keep_input_if_worse(Hex_mesh_arrays& mesh, const std::vector<Vec3>& input_points,
                                               const Quality_statistics& before, Optimization_result& res)
 {

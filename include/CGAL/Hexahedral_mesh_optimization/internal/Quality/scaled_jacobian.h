@@ -23,10 +23,9 @@
 // "Zero length" is relative: an edge shorter than 1e-6 of the longest edge
 // of its frame counts as vanished. The value being scale-invariant, a frame
 // whose edge is a few ulps of the coordinates still gets a value, and it is
-// noise: an ASJ smoothing that let a sharp vertex slide onto its neighbour
-// left bunny_dualsheet with an edge of 1e-18 (mean edge 0.025) and a corner
-// value of 0.10, which the rounding of the final coordinates turned into a
-// duplicate point. At a ratio of 1e-6 the edge still carries about ten
+// noise: a vertex slid onto its neighbour leaves an edge of a few ulps that
+// still gives its corner a fair value, and the rounding of the final
+// coordinates then turns it into a duplicate point. At a ratio of 1e-6 the edge still carries about ten
 // significant digits on meshes of a thousand edges across, and no published
 // mesh of the benchmark has a ratio anywhere near it.
 
@@ -325,9 +324,8 @@ inline bool is_inverted(double sj) { return sj < 0.; }
 /// hexes around a moved vertex, `current` being their minimum), given the
 /// stage's `floor`: an inverted element may not get worse, a valid one may
 /// go down to the floor but not below 0. With elements still inverted the
-/// floor (the MSJ) is negative, and a floor alone let the stages invert
-/// valid elements (kitten_with_bifur_2 with every vertex perturbed: an ASJ
-/// pass took the count from 4 to 18); the inverted count around a vertex
+/// floor (the MSJ) is negative, and a floor alone would let the stages
+/// invert valid elements down to it; the inverted count around a vertex
 /// must then not rise either (`Worst_element_smoothing::inverted_around`).
 inline double element_floor(double floor, double current)
 {

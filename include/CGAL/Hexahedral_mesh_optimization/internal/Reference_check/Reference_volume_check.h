@@ -19,7 +19,7 @@
 //   libtet1.5) frees its mesh before throwing and again in the destructor
 //   run by the unwinding: the process crashes (SIGSEGV) before any catch.
 //   So on POSIX systems TetGen runs in a fork()ed child that sends its
-//   result back through a pipe (about 1 ms of overhead; copy-on-write
+//   result back through a pipe (a small fixed cost; copy-on-write
 //   memory); a crash, or an exit(code) of a TetGen built without
 //   TETLIBRARY, becomes an error message. Elsewhere it runs in process,
 //   where the validation below must keep it from failing. Before TetGen,
@@ -29,9 +29,8 @@
 //   self-intersections (PMP::self_intersections: a clearer message than
 //   TetGen's code 3, and a precondition of the point location). The
 //   divergence-theorem volume of the triangles is reported next to TetGen's
-//   as a cross-check; on the bundled bunny and the edge-cone inputs they
-//   agree to 4e-7 relative or better (TetGen's Steiner points on the
-//   facets are rounded).
+//   as a cross-check (they differ only by the rounding of TetGen's Steiner
+//   points on the facets).
 // - Hex volume: the exact signed volume of the trilinear hexahedron,
 //   ∫ det J over the unit cube, by 2×2×2 Gauss quadrature. det J has degree
 //   at most 2 in each parametric variable (each column of J is independent
@@ -45,18 +44,14 @@
 // - Point location: CGAL::Side_of_triangle_mesh on the reference (ray
 //   parity with exact predicates, a new random ray when a ray hits an edge),
 //   sharing its AABB tree with the distance queries, rather than locating
-//   the points in TetGen's tetrahedra. Compared on the edge-cone outputs
-//   against their inputs' boundaries (2.5k-42k vertices, 1.9-3 tetrahedra
-//   per surface triangle), both give the same outside counts except one
-//   vertex each on block and cap: vertices lying on the surface, which a
-//   Steiner point of TetGen, rounded off its facet, leaves marginally outside
-//   the tetrahedra; Side_of_triangle_mesh answers for the surface as given.
-//   It was also 1.1-10 times faster than a bucket grid over the tetrahedra,
-//   and the AABB tree is needed for the distances anyway. Boundary vertices
-//   projected onto the surface lie on it only up to rounding and fall on
-//   either side (a third of the boundary vertices of the edge-cone outputs
-//   are outside, by at most 0.9 % of the diagonal): only the vertices
-//   farther than the tolerance count against the mesh.
+//   the points in TetGen's tetrahedra: the two differ only for vertices
+//   lying on the surface, which a Steiner point of TetGen, rounded off its
+//   facet, can leave marginally outside the tetrahedra, whereas
+//   Side_of_triangle_mesh answers for the surface as given. It is also
+//   faster than a bucket grid over the tetrahedra, and the AABB tree is
+//   needed for the distances anyway. Boundary vertices projected onto the
+//   surface lie on it only up to rounding and fall on either side: only the
+//   vertices farther than the tolerance count against the mesh.
 // - Self-intersections of the hex boundary: the boundary quads cut along
 //   (q0, q2), as in the surface error, and
 //   PMP::self_intersections. Two triangles sharing an edge or a vertex are

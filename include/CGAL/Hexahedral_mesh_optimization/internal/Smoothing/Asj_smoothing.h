@@ -38,9 +38,7 @@
 // same hex or read each other's boundary quads (`colour_units`); a pass
 // visits the colours in turn, the vertices or blocks of one colour on all
 // threads, each block in index order. The result does not depend on the
-// number of threads. bunny_in at MSJ 0.73, 8 s on 2 cores: 24 passes, ASJ
-// 0.938 -> 0.962 in colour order, against 14 passes, 0.956, one vertex at a
-// time.
+// number of threads.
 //
 // Boundary, with a target surface: a regular vertex moves in the tangent
 // plane of the reference at its place and is projected onto the reference
@@ -52,33 +50,21 @@
 // surface every boundary vertex is fixed. Quality and deviation are tested
 // at the projected position.
 //
-// Choices, measured with the shared meshes as inputs (floor = input MSJ,
-// `max_surface_deviation` = 1e-3 × bounding-box diagonal):
+// Choices (the measurements behind them are in the benchmark's RESULTS.md):
 // - Objective: the sum of soft minima (sharpness 30) rather than of the exact
 //   Verdict minima. The exact sum has a kink wherever two samples tie, which
 //   is where a single-vertex ascent stops; the soft sum is smooth, so the
-//   ascent goes on, and its maximiser has a higher exact ASJ (kitten 0.870
-//   against 0.851 with the exact sum; sharpness 25 / 50 / 100 after 10
-//   passes on rockerarm: 0.937 / 0.934 / 0.930). Raising the sharpness
-//   over the passes (continuation) gained nothing measurable.
-// - Candidates, rockerarm after 10 passes: cuboid target and one gradient
-//   step 0.934 (1.4 s), cuboid only 0.910 (0.7 s), gradient only 0.929
-//   (1.5 s); two gradient steps per visit 0.934 (2.0 s), four 0.935 (2.9 s).
-//   Skipping the gradient step after a full cuboid move is cheaper per pass
-//   but worse per second (0.939 against 0.948 after 30 passes).
+//   ascent goes on, and its maximiser has a higher exact ASJ. A sharper soft
+//   minimum tends to the exact one and stops earlier.
+// - Candidates: the cuboid target and one gradient step per visit; the
+//   cuboid alone stalls, more gradient steps cost more than they gain.
 // - Sharp vertices slide on their start polyline, not on the target
 //   surface's feature line: that line is a polyline of the smoothed Ω_t,
-//   which on coarse meshes lies visibly off the input's crease (kitten,
-//   without a deviation bound: surface error 0.020 with sharp vertices alone
-//   sliding on Ω_t lines; 0.0022 for the whole stage with start polylines
-//   and the bound).
-// - Deviation bound: without it the tangential moves alone take kitten's
-//   surface error to 0.012 (ASJ 0.878); with 1e-3 × diagonal 0.0022 (0.870),
-//   with 5e-4 0.0013 (0.866).
-// - Cost: about 0.15 s per pass per 10k hexes (one core); the ASJ keeps
-//   rising slowly for tens of passes (Gauss-Seidel on a smooth objective),
-//   bunny (37.7k hexes): 4 passes 2.3 s ASJ 0.9757, 8 passes 4.7 s 0.9770,
-//   18 passes 10.4 s 0.9785. `max_passes` and `min_asj_gain` bound it.
+//   which on coarse meshes lies visibly off the input's crease.
+// - Deviation bound: the tangential moves alone, projected onto a coarse
+//   reference, drift off the input's surface; the bound keeps them near it.
+// - Cost: the ASJ keeps rising slowly for tens of passes (Gauss-Seidel on a
+//   smooth objective), so `max_passes` and `min_asj_gain` bound the work.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -156,16 +142,15 @@ struct Asj_smoothing_settings
   /// (bound − error at the start, in mesh units): by the triangle
   /// inequality such a move keeps the error within the bound (up to the
   /// sampling of both tests). The built-in test costs a few point-quad
-  /// distances; the guard's AABB queries made an ASJ pass 4-6× slower
-  /// (bunny_in at MSJ 0.68, 8 s: 4 passes, ASJ 0.925 -> 0.937 with the
-  /// guard alone; 15 passes, 0.951 with this shortcut, error 0.0036 both).
+  /// distances, far less than the guard's AABB queries, so a pass that
+  /// mostly takes the shortcut runs much faster.
   /// 0 disables the shortcut.
   double start_deviation_budget = 0.;
   /// When finite, only the vertices of the hexes whose scaled Jacobian is
   /// below it, and of the hexes around those, are visited (then, as always,
   /// those near a move): the turns of the quality improver reshape the
-  /// neighbourhood of the worst elements, not the whole mesh (bunny_in: a
-  /// pass over all 37.7k hexes takes 2 s).
+  /// neighbourhood of the worst elements, and a pass over the whole mesh
+  /// would cost each turn time in proportion to the mesh, not to them.
   double focus_below = std::numeric_limits<double>::infinity();
   /// The order of a pass, and what runs in parallel (with TBB; the result
   /// never depends on the number of threads):
@@ -179,10 +164,10 @@ struct Asj_smoothing_settings
   ///     each other's boundary quads), the blocks of one colour run on all
   ///     threads, and each block runs in index order.
   /// Index order suits the short focused passes of the turns better than
-  /// colour order (fertility_gregson11's turns went on from MSJ 0.70 to 0.748
-  /// in index order and stalled at 0.701 in colour order; bunny_in: 0.725
-  /// against 0.587); blocks keep index order but for the few vertices where
-  /// two blocks meet.
+  /// colour order (a Gauss-Seidel sweep in index order carries a move on to
+  /// the neighbours visited next, where colour order scatters the visits
+  /// and the turns stall sooner); blocks keep index order but for the few
+  /// vertices where two blocks meet.
   enum class Visit_order { index, colours, index_blocks };
   Visit_order order = Visit_order::colours;
   /// the vertices per block of `Visit_order::index_blocks`
@@ -211,11 +196,11 @@ inline double exact_minimum(const double s[9])
 }
 
 /// exp(-d) for d >= 0, to a relative 7e-10 (d < 40; 0 beyond): the soft
-/// minima take 9 of them per hex and per trial, and libm's exp was 10 % of
-/// the run time. exp(-d) = 2^(-n/8) exp(-f) with n = floor(8 d / ln 2) and
+/// minima take 9 of them per hex and per trial, which puts libm's exp on the
+/// hot path. exp(-d) = 2^(-n/8) exp(-f) with n = floor(8 d / ln 2) and
 /// f = d - n ln 2 / 8 in [0, 0.087): a table for the first factor, the
-/// Taylor series to f^5 / 5! for the second (30 % faster than the series to
-/// f^8 on [0, ln 2) it replaces, which was accurate to 2e-7 only).
+/// Taylor series to f^5 / 5! for the second (short, because f is small: a
+/// series on the whole [0, ln 2) needs more terms for less accuracy).
 inline double exp_minus(double d)
 {
   if(!(d < 40.)) return 0.;
@@ -403,8 +388,8 @@ public:
       parallel_for_each_index(nh, [&](std::size_t h) { m_value[h] = asj_detail::soft_minimum(&m_samples[9 * h], m_kappa); }, 1024);
       if(time_limit_reached(m_s.time_limit)) break;
       ++rep.passes;
-      // one colour at a time, its vertices in parallel (a pass takes up to
-      // seconds on large meshes: the clock is read within it too)
+      // one colour at a time, its vertices in parallel (a pass over a large
+      // mesh is long: the clock is read within it too)
       std::fill(moved.begin(), moved.end(), 0);
       std::atomic<bool> out_of_time(false);
       for(std::size_t colour = 0; colour < m_colours.size(); ++colour)
@@ -673,8 +658,7 @@ private:
   // shares a hex with a vertex of the other (a move reads and writes the
   // hexes around its vertex only) and, when both move on the boundary,
   // neither is a vertex of a boundary quad around a quad neighbour of the
-  // other (the surface tests read the quads two rings out). bunny_in, units
-  // of one vertex: 21 colours of 2 to 3303 vertices (fertility_gregson11: 20).
+  // other (the surface tests read the quads two rings out).
   void colour_units(const std::vector<std::size_t>& unit_of, std::size_t units)
   {
     const std::size_t none = std::numeric_limits<std::size_t>::max();
@@ -812,9 +796,9 @@ private:
     {
       // each sharp vertex keeps to its own part of the segments, at most
       // `max_slide` of the way to a neighbour's start: two neighbours on a
-      // line stay at least 1 - 2 × max_slide of their start edge apart. With
-      // the whole segment allowed, bunny_dualsheet (with its .obj
-      // reference) had a vertex slide onto its neighbour: a vanished edge
+      // line stay at least 1 - 2 × max_slide of their start edge apart (with
+      // the whole segment allowed a vertex can slide onto its neighbour: a
+      // vanished edge)
       const double max_slide = 0.45;
       const Vec3 y = m_p[v] + d;
       const Vec3& o = m_start[v];

@@ -19,10 +19,10 @@
 // then halved like one that does not raise F enough.
 //
 // Gauss-Seidel moves one vertex at a time and converges slowly on this
-// smooth objective (bunny_in: 30 passes still gained 3.6e-4 ASJ each); the
+// smooth objective (each pass still gains a little after tens of them); the
 // quasi-Newton steps move every vertex together along a curvature-aware
 // direction, preconditioned by the squared length of each vertex's shortest
-// edge (see the manual's implementation notes for figures). The
+// edge. The
 // Gauss-Seidel passes that follow see to the boundary and to the vertices
 // left fixed here.
 //
@@ -251,8 +251,8 @@ private:
   }
 
   // D: per free vertex, the squared length of its shortest edge (the
-  // objective's Hessian scales as 1 / length²; meshes grade over orders of
-  // magnitude: bunny_in's edges go from 2e-7 to 0.05)
+  // objective's Hessian scales as 1 / length², and the edges of one mesh can
+  // span orders of magnitude)
   void set_preconditioner()
   {
     m_diagonal.resize(3 * m_free.size());

@@ -29,8 +29,8 @@
 //     (Surface_guard.h), the guard is the constraint: the feature
 //     classification at θ = 165° marks many spurious creases and corners on
 //     coarse curved models, and a vertex held on a spurious feature line
-//     fixes the worst angle of its hexes (cat_2: MSJ 0.10 with the class
-//     constraints, 0.30 with the guard). So a move along the class is tried
+//     fixes the worst angle of its hexes, which then bounds the MSJ. So a
+//     move along the class is tried
 //     first (sharp vertices), then a move in the tangent plane of the
 //     reference projected back onto it, then a free move (it can cut a
 //     180° boundary edge of a hex with two faces on a smooth surface, which
@@ -47,8 +47,7 @@
 // together (`improve_element`), then those of each cluster of elements near
 // the minimum that share vertices (`improve_clusters`): single-vertex and
 // single-element moves both stall where several elements at the minimum
-// share vertices, each move lowering one of the others (the manual's
-// implementation notes have the figures).
+// share vertices, each move lowering one of the others.
 //
 // Parallel and deterministic: a sweep cuts its worst-first list into
 // batches of vertices that cannot see each other's moves (no shared hex; on
@@ -161,9 +160,9 @@ public:
       {
         // single-vertex moves have stalled: move the interior vertices of
         // each element at the minimum together (those below the target
-        // only: near the end of a 1M-hex grid's run, MSJ + band / 2 was
-        // above every element, and the moves of all of them, one at a time,
-        // took half of the run)
+        // only: near the end of a run MSJ + band / 2 can be above every
+        // element, and moving all of them, one at a time, would cost a pass
+        // over the whole mesh at every stall)
         std::vector<std::pair<double, std::size_t> > worst;
         const double below = (std::min)(now + 0.5 * s.band, s.target_sj);
         for(std::size_t h = 0; h < nh; ++h)
@@ -473,8 +472,7 @@ private:
   /// of the samples of every hex around them (analytic gradient in all
   /// their coordinates), accepted only if the minimum over those hexes rises.
   /// Single-vertex max-min stalls where several elements at the minimum
-  /// share vertices and each move of one vertex lowers one of them
-  /// (bunny_in: 9 sweeps end at 0.435 on interior hexes only).
+  /// share vertices and each move of one vertex lowers one of them.
   std::size_t improve_element(std::vector<Vec3>& points, std::size_t h, std::vector<double>& sj) const
   {
     std::vector<std::size_t> verts;

@@ -32,7 +32,6 @@
 // (Worst_element_smoothing) so that the next sweep may move them further.
 // The sweeps stop when neither kind of move changed anything, after
 // `max_sweeps` or at the run's time limit (a hard stop).
-// Measured on the shared meshes: see Hex_mesh_quality_improver.h.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_topology.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
@@ -52,7 +51,7 @@ struct Boundary_restoration_settings
   double threshold = 0.;
   /// vertices at most this far from home are home (mesh units): after an
   /// untangling that kept the boundary fixed, all of them are, up to
-  /// rounding, and visiting them cost impeller_stresstest 3 s per stage
+  /// rounding, and visiting them would cost a sweep over the whole boundary
   double home_distance = 0.;
   /// no hex may fall below min(floor, its minimum before the move) (see `element_floor`)
   double floor = 0.;
@@ -144,10 +143,9 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
     }
     active.swap(next);
     // the sweeps go on while the interior moves too: what it gains is what
-    // the next sweep needs to move a stuck vertex. Stopping as soon as no
-    // boundary vertex moved cut bunny_dualsheet (with its .obj reference,
-    // every vertex stuck after the pull-back) to one sweep, and its MSJ
-    // stages then stalled at 0.17 instead of 0.33
+    // the next sweep needs to move a stuck vertex (when every boundary
+    // vertex is stuck after the pull-back, stopping as soon as none moved
+    // would end after one sweep and leave the MSJ stages a poor start)
     if(moved == 0 && interior_moved == 0) break;
   }
   rep.distance_after = largest_distance();

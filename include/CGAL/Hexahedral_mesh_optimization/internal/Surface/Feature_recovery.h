@@ -76,8 +76,8 @@ struct Feature_recovery_parameters
   /// τ: on a crease whose normals turn by more than `topological_crease_turn`
   /// degrees, a boundary edge on two hexes (a smooth part's) costs 1 + τ
   /// times more than one on one hex or three and more (0: the hex counts
-  /// are not used). Fandisk's all-vertex stress runs end the same for τ from
-  /// 0.5 to 1.5; at 2 one of them loses the pull-back (see the manual)
+  /// are not used). 1 lies in the middle of the range of τ over which the
+  /// results do not change (RESULTS.md of the benchmark)
   double topological_crease_cost = 1.;
   double topological_crease_turn = 45.;
   /// the hex counts are used only when at least this fraction of the

@@ -22,11 +22,9 @@
 //   corner). Closed loops without such a vertex stay closed.
 // - Clear features: the reference has features only when at least half of
 //   its sharp edges at θ are still sharp at θ − `clear_margin`: a CAD
-//   part's creases lie far below any threshold (fandisk: 207 edges at 150°,
-//   203 at 120°; mid2Fem 521 and 331), the edges of a faceted organic
-//   surface spread over all angles (the bundled bunny reference: 500 and
-//   116; kitty 149 and 10), and the creases found there would pull the
-//   boundary onto facets. Without features, the caller keeps its
+//   part's creases lie far below any threshold, so lowering it loses few of
+//   them, while the edges of a faceted organic surface spread over all
+//   angles, and the creases found there would pull the boundary onto facets. Without features, the caller keeps its
 //   classification of the boundary by dihedral angles.
 // - Fragments: a curve shorter than `min_length` that dangles (one end of
 //   sharp degree 1) or is a closed loop is dropped, until stable: a scanned

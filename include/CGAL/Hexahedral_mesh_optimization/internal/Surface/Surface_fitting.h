@@ -16,9 +16,8 @@
 // on the reference, and each quad is a chord of the surface under it: over a
 // curved patch, or over the kinks of a faceted reference, the quads leave
 // the surface (mesh → reference) and uncover its bumps (reference → mesh).
-// On the all-vertex fandisk stress runs that chordal error alone, every
-// vertex on the surface, is 0.0053 to 0.0063 of the diagonal, above the
-// 0.005 asked for; the later stages only keep what they are given.
+// That chordal error alone, every vertex on the surface, can exceed the
+// tolerance, and the later stages only keep what they are given.
 //
 // The local error of boundary vertex v at x, F_v(x), is the largest of
 //   - mesh → reference: the distance to the reference of a grid of points
@@ -35,8 +34,8 @@
 // reference; a crease vertex tries the 2 directions along the reference's
 // own crease and stays on it (the target's feature lines join the chain's
 // vertices, chords of the crease: sliding along them cannot fit a chain to
-// a bent crease; fandisk seed 1 stayed at 1.03 tolerances that way, and
-// went to 0.80 along the creases). It moves to the best candidate that
+// a bent crease, where the reference's own crease can). It moves to the
+// best candidate that
 //   - lowers E_v, the sum over the same samples of (d / aim)^8, by more than
 //     `min_gain` of it, and does not raise F_v above max(aim, F_v): the
 //     largest error is often shared by the vertices of one quad, and none

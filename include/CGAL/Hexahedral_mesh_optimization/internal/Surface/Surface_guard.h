@@ -22,15 +22,14 @@
 //   - reference → mesh: samples of the same quads at their start positions
 //     (on the reference when the run starts) to the current quads around v
 //     and around its quad neighbours.
-// Sampling, not the exact local Hausdorff distance: measured on the shared
-// meshes, the global Hausdorff distance after a run stays within ~10 % of
-// the tolerance (corners and centroids alone let it reach 3× the tolerance).
+// Sampling, not the exact local Hausdorff distance: dense enough on each quad
+// that the global Hausdorff distance after a run stays close to the tolerance
+// (corners and centroids alone miss the chords between them).
 // The two directions are kept apart (`Surface_deviation`): a move must keep
 // each within max(tolerance, its value before the move). With one number,
 // a vertex next to a fold of the input's boundary (reference → mesh far
-// beyond the tolerance, and nothing can fix it) was free to take its quads
-// off the reference up to that distance: cap_in's error doubled (0.006 →
-// 0.0103) in one max-min stage.
+// beyond the tolerance, and nothing can fix it) would be free to take its
+// quads off the reference (mesh → reference) up to that distance.
 // Cost: a stage asks whether a move stays within a bound far more often
 // than it needs the deviation itself, so `allows` stops at the first sample
 // beyond the bound, and `bound_at` measures exactly only what exceeds the
@@ -39,7 +38,7 @@
 // 1-Lipschitz and a sample is a convex combination of the corners, so a
 // sample whose cached distance plus how far it moved is within the bound
 // needs no query. The answers are those of the full measure (tested in
-// test_asj_smoothing); the figures are in the manual.
+// test_asj_smoothing).
 // The reference is the surface the error is measured against (the input's
 // boundary cut along (0, 2), or the user's reference surface), not the
 // target surface's both-diagonal soup: on a warped quad the two differ by
@@ -85,8 +84,8 @@ struct Surface_deviation
 class Surface_guard
 {
   // plain double arithmetic for the closest-point queries: with filtered
-  // predicates the sphere-box tests of a flat (axis-aligned) boundary fell
-  // back to exact arithmetic (11 % of a 1M-hex grid's untangling)
+  // predicates the sphere-box tests of a flat (axis-aligned) boundary fall
+  // back to exact arithmetic, and a distance needs no exactness
   typedef CGAL::Simple_cartesian<double> K;
   typedef std::vector<K::Triangle_3>::const_iterator Iterator;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Iterator> > > Tree;
@@ -186,7 +185,7 @@ private:
   /// closest-point queries along a sequence of samples, each starting from
   /// the closest point of the previous one (the samples come in order along
   /// the quad): the tree then prunes with a tight radius from the start (the
-  /// same distances; see the manual)
+  /// same distances, fewer nodes visited)
   struct Hinted_query
   {
     explicit Hinted_query(const Tree& t) : tree(t) {}
@@ -398,8 +397,8 @@ private:
   }
 
   /// the points of a grid of step 1/16 on each of the quad's (0, 2) triangles
-  /// (a 1/8 grid still missed fertility_gregson11's overshoot), each with
-  /// its weights of the quad's corners
+  /// (fine enough to catch a quad's overshoot between coarse samples), each
+  /// with its weights of the quad's corners
   static constexpr int fine_steps = 16;
   template <class F>
   static void for_each_fine_sample(const std::array<Vec3, 4>& c, F f)

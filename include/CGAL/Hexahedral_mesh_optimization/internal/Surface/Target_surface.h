@@ -37,14 +37,13 @@
 //   curved line does not shrink). With θ = 165° instead, the many edges at
 //   155–170° of coarse curved regions flicker in and out of the feature set
 //   from one step to the next and the smoothing folds quads; with no crease
-//   kept at all, the creases of CAD models are cut (fandisk: 29 corners become
-//   74). Measured on the shared meshes with 135°: corners 29 → 33 (fandisk),
-//   12 → 28 (hanger), 64 → 64 (impeller); the smoothing folds at most one
-//   boundary quad (bunny_dualsheet) and unfolds most of the input's.
+//   kept at all, the creases of CAD models are cut and their corners
+//   multiply. 135° keeps the strong creases and corners of CAD parts and
+//   unfolds most of a tangled input's boundary quads.
 // - Folds: during the first half of the steps (`masked_fraction`), no
 //   feature is detected at the vertices of non-convex (folded, bow-tie)
 //   boundary quads of the input, so that a fold of a tangled boundary is
-//   smoothed out instead of being kept as a crease (NOTES.md: features on the
+//   smoothed out instead of being kept as a crease (features detected on a
 //   tangled input are spurious there). Masking all vertices of inverted hexes
 //   instead was tried and cut real creases (a rim vertex of a cylinder lying on
 //   a flat interior hex).
@@ -64,9 +63,7 @@
 //   hysteresis threshold keeps
 //   the weak parts of strong edges in an image. The many edges at 150°-165°
 //   of coarse curved regions otherwise make short creases that meet in
-//   spurious corners (corners at θ = 165° without / with seeds at 150°:
-//   block_in 186 / 16, bust_in 281 / 100, cap_in 137 / 38, bunny_in
-//   497 / 109; see the manual).
+//   spurious corners.
 // - Fragments: the sharp edges form chains (split at vertices of sharp degree
 //   ≠ 2). A chain of fewer than `min_feature_edges` edges that dangles (an
 //   end of sharp degree 1) or forms an isolated closed loop is dropped;
@@ -131,8 +128,8 @@ struct Target_surface_parameters
   double masked_fraction = 0.5;
   /// the smoothing stops early once an iteration moves no vertex by more
   /// than this fraction of the mean boundary edge length (a boundary the
-  /// smoothing leaves where it is, such as a grid's flat faces: 20 iterations
-  /// cost 1.4 s on a 1M-hex grid and moved nothing)
+  /// smoothing leaves where it is, such as a grid's flat faces, then costs
+  /// one iteration, not all of them)
   double smoothing_convergence = 1e-9;
   /// project after every smoothing step (true) or once at the end
   bool project_every_iteration = true;
@@ -208,8 +205,8 @@ class Target_surface
 {
 public:
   // plain double arithmetic for the closest-point queries: with filtered
-  // predicates the sphere-box tests of a flat (axis-aligned) boundary fell
-  // back to exact arithmetic (11 % of a 1M-hex grid's untangling)
+  // predicates the sphere-box tests of a flat (axis-aligned) boundary fall
+  // back to exact arithmetic, and a distance needs no exactness
   typedef CGAL::Simple_cartesian<double> K;
   typedef K::Point_3 Point_3;
   typedef K::Triangle_3 Triangle_3;
@@ -699,9 +696,8 @@ private:
     // reference). The smoothing keeps only the corners of the 135° set in
     // place; a vertex that is a corner only at θ (a tip, the end of a
     // feature line) slides while smoothing, and the surface error (Hausdorff
-    // against the input boundary) is then at least the distance it slid.
-    // Measured after untangling + pull-back (Hex_mesh_untangler.h): bust_in
-    // 0.0086 → 0.0061 of the bbox diagonal, block and cap unchanged.
+    // against the input boundary) is then at least the distance it slid;
+    // putting it back removes that part of the error.
     for(std::size_t bi = 0; bi < nb; ++bi)
       if(degree[bi] != 0 && degree[bi] != 2)
         closest_on_reference(mesh_points[boundary_.vertices[bi]], omega_[bi]);

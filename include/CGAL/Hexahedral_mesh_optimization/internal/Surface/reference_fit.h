@@ -7,20 +7,15 @@
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_REFERENCE_FIT_H
 
 // Does a reference surface fit the mesh it is given with? (see
-// Reference_fit.h for the verdicts). Measured before any stage moves a vertex:
-// a reference in another frame (HexOpt's rkm012: mesh in [-42, 323] x
-// [-739, -323] x ..., surface in [0, 10]^3) used to run for 26 s and write a
-// mesh 3.6 diagonals off its surface without a word.
+// Reference_fit.h for the verdicts). Checked before any stage moves a vertex:
+// a reference in another coordinate frame would otherwise run the whole
+// pipeline and write a mesh far off its surface without a word.
 //
-// The thresholds (`Reference_fit_thresholds`), against what the shared
-// meshes measure with their references (largest vertex distance, in
-// reference diagonals): bunny_dualsheet and bunny_reference.obj 0 (the
-// reference is the bunny's own boundary, cut along other diagonals: the
-// 0.0117 of its Hausdorff distance is inside the quads), mid2FemPer and
-// mid2Fem.obj 0.00026, HexOpt's published optimisation of it 0.0076. A
-// mismatch needs half of the vertices of one surface beyond 5 % (six times
-// the farthest of these), bounding boxes that do not meet, or diagonals a
-// factor 2 apart: far beyond any perturbation of a boundary. Medians, so
+// The thresholds (`Reference_fit_thresholds`): a mismatch needs half of the
+// vertices of one surface beyond 5 % of the diagonal, bounding boxes that do
+// not meet, or diagonals a factor 2 apart: far beyond any perturbation of a
+// boundary, and several times what a mesh and its own reference measure
+// (RESULTS.md of the benchmark has the shared meshes' figures). Medians, so
 // that a few stray vertices (a perturbed CAD mesh) make a warning, not an
 // error.
 

@@ -15,19 +15,18 @@
 //   in both directions, with an error bound of 1e-4 × the reference's
 //   bounding-box diagonal: the exact Hausdorff distance up to that bound
 //   (metro, which the paper used, samples and so slightly underestimates),
-//   and faster than dense sampling (0.05–0.5 s on the benchmark meshes).
+//   and faster than sampling densely enough to reach that bound.
 // - Quads are cut along their (q0, q2) diagonal (`Quad_split::diagonal_02`),
 //   a fixed rule, not the shorter diagonal: two meshes with the same
 //   connectivity (an optimiser's input and output) are then triangulated
 //   alike, and a warped quad whose geometry did not change contributes no
-//   error. With a per-mesh shorter-diagonal rule the error of block_edgecone
-//   vs block_in doubles (0.0088 instead of 0.0053) because of a single warped
-//   quad triangulated differently in the two meshes.
+//   error. With a per-mesh shorter-diagonal rule a single warped quad
+//   triangulated differently in the two meshes can dominate the error.
 // - Normalisation: the reference's bounding-box diagonal. Metro instead
 //   divides by the diagonal of the union of both boxes enlarged by 2 % of its
 //   diagonal on every side (vcglib metro.cpp: bbox.Offset(bbox.Diag()*0.02));
 //   `metro_diagonal` gives that value, for comparison with published tables
-//   (≈ 6–7 % larger on the benchmark meshes).
+//   (about 7 % larger for a box of equal sides).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
@@ -325,10 +324,9 @@ bool subdivide_and_bound(const Soup_triangle& triangle, int depth, const BoundOf
 /// lie on other triangles than R, up to an edge length from it). Where T
 /// crosses one edge of R, `straddle_bound` bounds each side by its own
 /// triangle, which is close to the distance; parts near a corner of R are
-/// left to the subdivision. bunny_in, fertility_gregson11,
-/// impeller_stresstest: see the manual's implementation notes for the
-/// figures. `tree` holds `to_triangles`, the triangles of `to` in face order
-/// (`triangles_of`), distance queries accelerated; `to_neighbours` their
+/// left to the subdivision (RESULTS.md of the benchmark has what both
+/// bounds save). `tree` holds `to_triangles`, the triangles of `to` in face
+/// order (`triangles_of`), distance queries accelerated; `to_neighbours` their
 /// `face_neighbours` (`Reference_distance_index` keeps all three for a
 /// whole run). `witnesses` (if given) receives the bound of each triangle
 /// of `from` and the triangles of `to` (indices in `to_triangles`) it went
@@ -522,7 +520,7 @@ inline Surface_distance surface_distance(const Hex_mesh_arrays& mesh,
 /// most d too. A check then leaves out whatever is certainly below the
 /// error it already knows, without a closest-point query: in a turn of the
 /// quality stages most of the boundary moves a little and stays well within
-/// the error (see the manual's implementation notes).
+/// the error, so most of it is left out.
 class Moving_distance_bounds
 {
 public:

@@ -137,8 +137,9 @@ private:
     // local index of every vertex of the region's hexes: free i >= 0, fixed
     // -1-slot (slots in order of first use). The free index of a vertex: a
     // binary search in the sorted free vertices, or for a region holding a
-    // good part of the mesh, a table over all the vertices (a 948k-hex
-    // region of a 1M-hex grid: 0.6 s -> 0.1 s)
+    // good part of the mesh, a table over all the vertices (one lookup per
+    // corner instead of a search, where the table costs little more than
+    // the region itself)
     const bool dense = nf > 0 && 8 * nf >= m_topo.number_of_vertices();
     std::vector<int> free_index(dense ? m_topo.number_of_vertices() : 0, absent);
     if(dense) for(std::size_t i = 0; i < nf; ++i) free_index[m_region.free_vertices[i]] = int(i);
@@ -229,8 +230,8 @@ private:
 
 
   /// regions of at least this many hexes evaluate their energy on all
-  /// threads, this many hexes at a time (a merged region of a 1M-hex grid
-  /// held 570k hexes, on one thread)
+  /// threads, this many hexes at a time (merged regions can hold a large part
+  /// of the mesh; smaller ones are not worth the threads' overhead)
   static constexpr std::size_t parallel_energy_hexes = 4096;
 
   /// the frame energy of region hex r (infinity when injective and a frame
@@ -261,7 +262,7 @@ private:
       }
       double f2 = 0.;
       for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) f2 += j[a][b] * j[a][b];
-      const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3); std::pow was 11 % of a 1M-hex untangling
+      const double c23 = 1. / std::cbrt(chi * chi); // chi^(-2/3), cheaper than std::pow on this hot path
       e += f2 * c23;
       // the volume term, in units of the region's frame size s = m_scale
       if(m_theta > 0.)
@@ -396,12 +397,11 @@ private:
       history.push(x_new - x, g_new - g);
       const double de = e - e_new;
       x.swap(x_new); g.swap(g_new); e = e_new;
-      // converged: the energy fell by less than this (relative); at 1e-12 the
-      // interior stage of a 1M-hex grid took 15 s instead of 10, same result.
-      // A large region (see `parallel_energy_hexes`) stops at 1e-8: the 1M
-      // grid's one region of 570k hexes untangled all the same, 21.9 s ->
-      // 17.4 s. Small regions keep 1e-9: with 1e-8 everywhere bunny's MSJ
-      // fell from 0.727 to 0.675 (see the manual)
+      // converged: the energy fell by less than this (relative). A large
+      // region (see `parallel_energy_hexes`) stops at 1e-8: its last
+      // iterations are long and untangle nothing more. Small regions keep
+      // 1e-9: they are cheap, and the positions they end at are where the
+      // quality stages start, so stopping them early costs MSJ later
       const double converged = m_region.hexes.size() < parallel_energy_hexes ? 1e-9 : 1e-8;
       if(de < converged * (std::abs(e) + 1.)) break;
     }

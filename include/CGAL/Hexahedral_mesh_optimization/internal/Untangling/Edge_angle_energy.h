@@ -27,7 +27,8 @@
 //    rows of Eq. 6 have the same units: with the mesh normalised to mean
 //    edge length 0.025, α = β = 1000 then hold the surface firmly, and the
 //    paper's halving schedule relaxes it gradually. With unitless angle rows
-//    NOTES.md measured the surface drifting by about one edge everywhere.
+//    a boundary move of a whole edge costs little against them, and the
+//    surface drifts.
 //  * The tripod fit makes the local step orientation-aware: an inverted
 //    corner has the same pairwise angles as its mirror image, but its
 //    Procrustes rotation pulls it towards the positive tripod.
@@ -62,7 +63,7 @@ namespace internal {
 /// Σ_k |R t_k - u_k|², i.e. the rotational part of M = Σ_k u_k t_kᵀ.
 /// Extracted iteratively as in Müller et al., "A robust method to extract the
 /// rotational part of deformations" (MIG 2016): q is warm-started from the
-/// previous solve of the same corner, which makes this ~10x cheaper than a
+/// previous solve of the same corner, which makes this much cheaper than a
 /// 3x3 SVD and, unlike the SVD with a sign flip, continuous in M.
 inline Eigen::Matrix3d best_rotation(const Tripod& t, const std::array<Vec3, 3>& u, Eigen::Quaterniond& q)
 {

@@ -22,19 +22,19 @@
 //     progress through a plateau);
 //     τ ← 0.9 τ after an accepted step (the paper's decreasing step), but
 //     τ ← 0.5 τ after a rolled-back one: the paper only decreases τ by 10 %,
-//     which on block_in spent 85 % of the solves on repeated rollbacks.
+//     which spends most of the solves of a hard region on repeated rollbacks.
 // After a round: ξ ← ξ - 0.1; below ξ_min, α and β are halved (not below
 // their floor) and ξ is reset. A round that removes no bad element makes the
 // regions one ring wider next time (dense clusters of bad elements need more
 // room than a 2-ring, as the paper says for the stress tests) and halves α
 // and β at once: with the paper's schedule alone a stuck feature region
-// waits 5 rounds per halving (block_in: 36 rounds, 11 s; with this: see the
-// benchmark).
+// waits 5 rounds per halving.
 //
 // Choice: the paper projects the boundary onto the surface after every
-// iteration; NOTES measured that this stops all progress on `cap`, so here a
-// boundary vertex's anchor and normal are only refreshed at the start of each
-// region solve (NOTES reading 3).
+// iteration, which undoes the relaxation the untangling needs (a boundary
+// vertex that must leave the surface to free an element is put back at
+// once), so here a boundary vertex's anchor and normal are only refreshed at
+// the start of each region solve (NOTES reading 3).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Edge_angle_energy.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Target_edge_lengths.h>
@@ -72,8 +72,8 @@ struct Local_optimizer_settings
   double min_sj_floor = -std::numeric_limits<double>::infinity();
   /// regions with more hexes are skipped (left to a later stage); a round
   /// in which every region is skipped ends the run. The sparse Cholesky
-  /// factorisation of one region grows much faster than its size
-  /// (impeller_stresstest: one 11k-hex region, 65 % of the time in it).
+  /// factorisation of one region grows much faster than its size, so one
+  /// large region can take most of a run.
   std::size_t max_region_hexes = std::numeric_limits<std::size_t>::max();
   /// the run ends after this many consecutive rounds that remove no bad
   /// element (a later stage takes over)

@@ -37,12 +37,11 @@
 // failure case, Fig. 11, blames exactly that correspondence).
 //
 // Choices where the paper is vague ("SLIM with the exponential AMIPS
-// energy on the 8 corner tetrahedra, 20 iterations"), with what was measured
-// (bunny_dualsheet after untangling, 2832 hexes, and relaxed grids):
+// energy on the 8 corner tetrahedra, 20 iterations"), and why:
 // - Energy: symmetric Dirichlet. AMIPS is scale invariant, so its SLIM
 //   weights (which need f'(σ)/(σ − 1) > 0) are undefined; the exponential
-//   symmetric Dirichlet exp(s (f − 6)) is available (`energy`): same surface
-//   error on the bunny, a larger final max distance, more CG iterations.
+//   symmetric Dirichlet exp(s (f − 6)) is available (`energy`) but gains no
+//   surface error for a larger final max distance and more CG iterations.
 // - Samples: the centre frame is included, so that finite energy ⇔ every
 //   element has a positive 9-point scaled Jacobian (the 8 corner tets alone
 //   do not bound the centre sample).
@@ -50,13 +49,11 @@
 //   edge length (the energy then also improves the elements it moves). The
 //   element's own initial frames (`initial_element`) reach the same surface
 //   error, but a near-degenerate rest frame makes the system ill-conditioned
-//   (bunny with the reference surface: 50k CG iterations instead of 1.4k,
-//   14× slower).
+//   (the CG then needs an order of magnitude more iterations).
 // - Linear solver: conjugate gradient with a 3×3 block-Jacobi
 //   preconditioner, warm-started. Eigen's SimplicialLDLT is available
-//   (`linear_solver`) but its fill-in on a 3D block is prohibitive: 1.5 s
-//   per factorisation on a 2k-vertex block, against ~40 CG iterations (a few
-//   ms) per solve.
+//   (`linear_solver`) but its fill-in on a 3D block makes each factorisation
+//   far dearer than the few tens of warm-started CG iterations a solve needs.
 // - Constraints: soft, with a weight w that starts at 1 (the interior follows
 //   the boundary) and grows ×4 after every iteration that took at least a
 //   quarter of the SLIM step, or after 4 iterations without a 1 % gain, up to
@@ -74,8 +71,6 @@
 //   `tolerance`·ℓ of its anchor or the run stalls. When the surface cannot
 //   be reached, the valid state with the smallest max + mean distance is
 //   returned and `reached` is false.
-// Measured: relaxed 39k-hex block (whole boundary 1.2 edges off): reached in
-// 9 iterations, 2.8 s CPU; a local bump: 6 iterations, 0.3 s.
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_constraint.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -330,9 +325,8 @@ private:
   /// inverted by the untangling) keep their vertices where they are: no
   /// region moves them, and the floors are relative to the least scaled
   /// Jacobian of the others (`m_valid_min_sj`). Without this, one such hex
-  /// kept the whole pull-back from starting, and the boundary stayed off its
-  /// surface (kitten_with_bifur_2 with every vertex perturbed: 0.08 of the
-  /// diagonal).
+  /// keeps the whole pull-back from starting (no step keeps every sample
+  /// determinant positive), and the boundary stays off its surface.
   void pin_invalid_hexes(const std::vector<Vec3>& points)
   {
     m_pinned.assign(points.size(), 0);
