@@ -281,7 +281,7 @@ private:
   /// above the tolerance, they run again from where they started with the
   /// guard's bound times `msj_guard_retry_factor`, at most
   /// `msj_guard_retries` times; the first run within the tolerance is kept,
-  /// or else the one with the lowest error. The margin, the fine sampling and
+  /// or else the mesh as the stages received it. The margin, the fine sampling and
   /// the runs again apply only when the error before the stages is within
   /// the tolerance (after an untangling that left the boundary off the
   /// surface they cannot cause an excess, and only hold the stages back).
@@ -319,6 +319,16 @@ private:
         best = st.mesh.points;
         best_error = st.current_error;
       }
+    }
+    if(best_error > m_s.surface_tolerance && !stopped())
+    {
+      // no run within the tolerance: the tolerance binds and the MSJ is
+      // only aimed at, so the mesh as the stages received it (within) is kept
+      st.mesh.points = before;
+      measure_error(st);
+      report_check(st, "the runs again of the MSJ stages",
+                   "none within the tolerance: the mesh before the MSJ stages kept");
+      return;
     }
     if(!best_is_current)
     {
