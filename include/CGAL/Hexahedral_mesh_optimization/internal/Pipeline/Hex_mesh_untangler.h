@@ -16,15 +16,9 @@
 //   3. stage "interior": the foldover-free energy (Barrier_untangler.h) on
 //      regions around the inverted hexes with every boundary vertex fixed —
 //      what the interior alone can untangle is untangled without moving the
-//      surface. Measured: cap_in 50 → 0 inverted in 0.55 s,
-//      impeller_stresstest 8857 → 0 in 0.9 s, block_in 31 → 0, bust_in
-//      30 → 2; surface error < 0.0001 of the diagonal where it clears all
-//      (before, through the edge-angle optimiser with α, β relaxed and the
-//      barrier with a soft boundary: cap_in 0.0085, impeller 0.0019 — a
-//      vertex of cap_in ended 3 mean edges from its home, and the quality
-//      stages' surface guard then missed the crease it had uncovered; the
-//      whole pipeline ended at 0.0065 and 0.0010 for bounds of 0.0053 and
-//      0.0005);
+//      surface (untangling through the relaxed edge-angle optimiser first
+//      lets boundary vertices wander mean edges from home and uncover
+//      creases the quality stages' guard then misses);
 //   4. stage "edge-angle": the local optimiser of Algorithm 1
 //      (Local_optimizer.h) on what is left;
 //   5. stage "barrier": on what is left, the foldover-free energy
@@ -80,11 +74,9 @@ struct Untangle_settings
 /// `region` without what keeps the barrier at ε = 0 from starting: the
 /// vertices of its hexes whose scaled Jacobian is not positive stay where
 /// they are, and the hexes left with no free vertex drop out. Without this,
-/// one inverted hex left by the untangling made every region around it
+/// one inverted hex left by the untangling makes every region around it
 /// (regions merge: on a boundary that starts off its surface everywhere,
-/// one region) refuse to move, and the boundary stayed off the surface
-/// (kitten_with_bifur_2 with every vertex perturbed: 3.8 edges, surface
-/// error 0.09 of the diagonal).
+/// one region) refuse to move, and the boundary stays off the surface.
 template <class Hex_sj>
 Local_region without_nonpositive_hexes(const Local_region& region, const std::vector<Hex>& hexes, const Hex_sj& hex_sj)
 {
@@ -120,19 +112,16 @@ Local_region without_nonpositive_hexes(const Local_region& region, const std::ve
 /// pass while the anchors are refreshed. A region's result is kept only if
 /// its largest residual did not grow and it has no more inverted hexes.
 ///
-/// Why (measured, benchmark defaults): Algorithm 1 halves α and β globally
-/// until the last stuck element is freed, and by then the boundary of every
-/// region has drifted (block_in 0.0139, bust_in 0.0190, cap_in 0.0518 of
-/// the bbox diagonal). Moving boundary vertices back one at a time
-/// (backtracking toward the anchor, each accepted only if the hexes around
-/// keep SJ > 0) gained almost nothing (block 0.0135, cap 0.0468): the whole
-/// neighbourhood had moved, so the interior must move with the boundary.
-/// This pass gives block 0.0047, bust 0.0054, cap 0.0085, and raises the
-/// MSJ (block 0.002 → 0.08) since the frame energy also shapes the hexes.
-/// The sharp residual is the distance to the reference, not to Ω_t's
-/// feature polyline: on the noisy "features" of organic models the chords
-/// are off the surface, and pulling onto them moved bunny_in's boundary by
-/// half an edge (error 0.0004 → 0.0112).
+/// Why: Algorithm 1 halves α and β globally until the last stuck element
+/// is freed, and by then the boundary of every region has drifted. Moving
+/// boundary vertices back one at a time (backtracking toward the anchor,
+/// each accepted only if the hexes around keep SJ > 0) gains almost
+/// nothing: the whole neighbourhood has moved, so the interior must move
+/// with the boundary. The pass also raises the MSJ, since the frame energy
+/// shapes the hexes. The sharp residual is the distance to the reference,
+/// not to Ω_t's feature polyline: on the noisy "features" of organic models
+/// the chords are off the surface, and pulling onto them moves the boundary
+/// off it.
 /// Returns the largest residual left.
 inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_surface& ts,
                                    std::vector<Vec3>& points, double tol, int outer,
@@ -152,8 +141,7 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
     if(b.type == Vertex_class::sharp)
     {
       // off the surface, not off Ω_t's feature polyline (on noisy "features"
-      // of organic models the polyline's chords are off the surface: pulling
-      // onto them moved bunny_in's boundary by 0.5 edge)
+      // of organic models the polyline's chords are off the surface)
       Vec3 q;
       ts.closest_on_reference(points[v], q);
       return norm(points[v] - q);
@@ -276,8 +264,8 @@ public:
     if(m_s.barrier_fallback && sc.interior_stage && q0.inverted > 0 && !stopped())
       interior_stage(topo, ts->boundary(), mesh, res);
     // (what the interior stage freed needs no edge-angle stage: its set-up,
-    // ideal angles and target lengths over the whole mesh, cost 5 s on a
-    // 1M-hex grid with nothing left to untangle)
+    // ideal angles and target lengths over the whole mesh, is costly on a
+    // large mesh with nothing left to untangle)
     if((sc.edge_angle_stage || !m_s.barrier_fallback || !sc.barrier_stage) && m_inverted > 0 && !stopped())
       edge_angle_stage(topo, *ts, mesh, res);
     if(m_s.barrier_fallback && sc.barrier_stage && m_inverted > 0 && !stopped())
@@ -352,9 +340,11 @@ private:
     ls.local_iterations = m_s.local_iterations;
     ls.max_rounds = (std::min)(m_s.max_rounds, sc.edge_angle_rounds);
     ls.time_limit = m_s.time_limit;
-    // Hand-over to the barrier stage (measured): a region of more than
-    // `edge_angle_max_region_hexes` is left to it, and so is a plateau of
-    // `edge_angle_stalled_rounds` (see the manual)
+    // Hand-over to the barrier stage: a region of more than
+    // `edge_angle_max_region_hexes` is left to it (its factorisation grows
+    // much faster than its size), and so is a plateau of
+    // `edge_angle_stalled_rounds` (the barrier frees what the edge-angle
+    // optimiser stalls on)
     ls.max_region_hexes = sc.edge_angle_max_region_hexes;
     ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
     Stage_report sr = begin_stage("edge-angle");

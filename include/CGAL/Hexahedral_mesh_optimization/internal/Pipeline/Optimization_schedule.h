@@ -15,8 +15,9 @@
 // limit is a hard stop only (Time_limit.h), so the same input and options
 // give the same output on any machine and under any load.
 //
-// The values were chosen on the shared meshes; what was measured is in the
-// manual's implementation notes (doc/Hexahedral_mesh_optimization).
+// The values were chosen on the shared meshes and the benchmark's stress
+// set; the measurements behind them are in
+// benchmark/Hexahedral_mesh_optimization/RESULTS.md.
 
 #include <cstddef>
 #include <limits>
@@ -34,7 +35,7 @@ struct Optimization_schedule
   /// the boundary ("surface")
   bool interior_stage = true;
   /// untangling: the paper's edge-angle optimiser (Algorithm 1) between the
-  /// two barrier stages; it also runs when the barrier stages are turned off
+  /// two barrier stages; it also runs whenever the barrier stages are off
   /// (named parameter `barrier_fallback`)
   bool edge_angle_stage = true;
   bool barrier_stage = true;
@@ -70,16 +71,9 @@ struct Optimization_schedule
   /// pass, on regions one ring wider than the last, with the volume term of
   /// the foldover-free energy at this weight (`Barrier_untangler`, 0: no
   /// such pass). The shape term alone lets a frame it cannot untangle
-  /// collapse: on all-vertex-perturbed Dolphin_2 (seed 3 of the benchmark's
-  /// stress sets) it left an interior vertex with 4 of its 6 edges 0.0017 to
-  /// 0.0037 long against 0.085, two hexes at −0.003 that no later stage
-  /// could free (the interior barrier on up to 3528 hexes around them
-  /// neither). With the term in every pass (θ = 0.01 / 0.1 / 0.5) that input
-  /// untangled with 0 / 0 / 1 left, and the all-vertex stress sets of
-  /// kitten_with_bifur_2 and Dolphin_2 at 0.1 ended with 0 inverted in 5 of 5
-  /// runs each (3 of 5 each without), but the turns of the published rows
-  /// then took other paths (bunny_in MSJ 0.698 instead of 0.743); in one last
-  /// pass only, the published rows keep their bytes (see the manual)
+  /// collapse into a sliver that no later stage can free; the volume term
+  /// keeps it open. It runs in a last pass only: in every pass it changes
+  /// the turns' path on inputs that need no such help.
   double barrier_volume_weight = 0.1;
   /// `optimize_hex_mesh()`: how many times the untangler and the quality
   /// stages run again while elements are still inverted
@@ -98,9 +92,7 @@ struct Optimization_schedule
   /// coarsest level of at least `coarse_level_min_hexes` hexes, and the
   /// fine level starts from the input moved by that level's displacement,
   /// carried down trilinearly. On a fine mesh the turns end in a local
-  /// optimum that a coarse vertex's move, many fine layers at once, avoids:
-  /// fertility_gregson11 refined twice (1.27M hexes) ends at MSJ 0.607
-  /// without, 0.762 with (the original, 20k hexes: 0.719; see the manual).
+  /// optimum that a coarse vertex's move, many fine layers at once, avoids.
   /// Below that size a coarse level is too coarse to shape the fine one.
   bool coarse_level_start = true;
   std::size_t coarse_level_min_hexes = 4096;
@@ -108,9 +100,8 @@ struct Optimization_schedule
   /// The MSJ stages, the turns and `success` aim at min(target_msj, this):
   /// a mesh whose every element is above it is as good as a hex mesh gets,
   /// and aiming at 1 itself would make every element of a nearly regular
-  /// mesh "below the target" (a 125k-hex grid with 362 hexes inverted,
-  /// MSJ 0.9995 once untangled: the stage "msj>=1" visited all 125k for
-  /// 39 s). The cost then grows with the mesh, not with its bad elements.
+  /// mesh "below the target", so a stage would visit the whole mesh: the
+  /// cost would grow with the mesh, not with its bad elements.
   double excellent_msj = 0.999;
 
   /// the quality stages' creases (Target_surface.h): only the boundary
@@ -118,11 +109,8 @@ struct Optimization_schedule
   /// the sharp angle θ then only continue them
   /// (`Target_surface_parameters::feature_seed_angle`, the named parameter
   /// `crease_seed_angle`). Default 180: every edge below θ is a crease, as in
-  /// the paper and in the untangling stages. With 150 the 8 published rows
-  /// all stay above their published figures, bunny_in and fertility run
-  /// faster, cap_in slower (over its bound), and the stress sets gain on
-  /// fandisk and hanger and lose on cap and block (the manual has the
-  /// tables): not a default yet
+  /// the paper and in the untangling stages. 150 gains on some inputs and
+  /// loses on others (RESULTS.md, "Crease seeds"), so it is not the default.
   double crease_seed_angle = 180.;
 
   /// SLIM iterations of the pull-back
@@ -131,10 +119,11 @@ struct Optimization_schedule
   int restoration_sweeps = 8;
   /// the surface fit: vertices whose local two-sided error is above
   /// `surface_fit_aim` of the tolerance slide along the reference, at most
-  /// `surface_fit_sweeps` sweeps (see the manual)
+  /// `surface_fit_sweeps` sweeps (Surface_fitting.h)
   double surface_fit_aim = 0.8;
   /// the fit is kept only if it removes at least this fraction of the
-  /// surface error's excess over the tolerance (see the manual)
+  /// surface error's excess over the tolerance (a fit that gets nowhere
+  /// near the tolerance only costs quality)
   double surface_fit_min_excess_cut = 0.5;
   int surface_fit_sweeps = 8;
   /// the MSJ stages: targets 0, `msj_stage_step`, 2 × that, … ; in each,
@@ -142,9 +131,8 @@ struct Optimization_schedule
   /// while one raises the MSJ by at least `msj_stage_min_gain` or frees an
   /// element below the stage's target, at most
   /// `msj_stage_edge_angle_passes` times, each of at most `msj_stage_rounds`
-  /// rounds. Default 0: the turns below raise the MSJ faster (the 8 published
-  /// rows: as high or higher in less time, see the manual); the paper's
-  /// method runs them
+  /// rounds. Default 0: the turns below raise the MSJ as high or higher in
+  /// less time; the paper's method runs them.
   double msj_stage_step = 0.1;
   double msj_stage_min_gain = 0.005;
   int msj_stage_edge_angle_passes = 0;
@@ -163,8 +151,8 @@ struct Optimization_schedule
   /// the precision of the surface error measured by the quality stages'
   /// checks, relative to the reference's diagonal: a check may read the
   /// error up to this much low, so a state this close above the tolerance
-  /// can pass it. With 1e-4 (until 5 December 2026), hanger's all-vertex
-  /// stress run 4 was read at 0.00498 and kept at 0.00502 (see the manual)
+  /// can pass it; with 1e-4 a state just over the tolerance could be kept,
+  /// hence 1e-6.
   double surface_check_precision = 1e-6;
   /// the max-min smoothing (Worst_element_smoothing.h): at most this many
   /// sweeps; `max_min_patience` sweeps in a row that raise the MSJ by less
@@ -178,47 +166,34 @@ struct Optimization_schedule
   /// `turn_floor_drop`, and its halves down to `min_turn_floor_drop`
   /// (0, 0.03, 0.015, 0.0075). A turn that raises the MSJ by more than
   /// `turn_min_kept_gain` gets a surface check and is kept within the
-  /// bound; the others are undone without one (the check costs up to 0.7 s
-  /// on impeller_stresstest). A turn that is not kept, or gains less than
+  /// bound; the others are undone without one (the check is the dearest
+  /// part of a turn). A turn that is not kept, or gains less than
   /// `turn_min_gain`, moves on to the next drop, cyclically; a turn kept with
   /// at least `turn_min_gain` keeps its drop. The turns end when every drop
   /// has failed in a row. The guard of the turns and of the final
   /// smoothing starts at `turn_guard` of the tolerance and is halved after a
   /// turn undone for its surface error (the turns end below
   /// `min_turn_guard`) and after a turn kept only thanks to a surface
-  /// restoration (not below `min_turn_guard`): with the guard unchanged,
-  /// cap_in's turns went over the bound six times in a row, each time
-  /// brought back by a 0.3 s restoration (4.4 s in all, MSJ 0.466, ASJ
-  /// 0.846; halved: 2 restorations, 2.9 s, MSJ 0.451, ASJ 0.871; the 7
-  /// other rows never needed one in their turns and kept their bytes).
+  /// restoration (not below `min_turn_guard`): with the guard unchanged, a
+  /// turn can go over the bound again and again, each time brought back by
+  /// a restoration.
   /// Why so: the turns' gains are erratic, and which turn stalls first
-  /// depends on the rounding of sums. Ending on the second unproductive
-  /// turn, or undoing the turns that gained less than `turn_min_gain`
-  /// unchecked, ended bunny_in anywhere between MSJ 0.571 and 0.747 with
-  /// the same code but for the rounding of the ASJ objective (published:
-  /// 0.651): one kept gain of 0.004 let the later turns go on from 0.575 to
-  /// 0.720. `turn_min_gain` 0.005, not 0.001: a turn costs a focused ASJ
-  /// pass, a max-min run and a surface check (see the manual).
+  /// depends on the rounding of sums; ending on the second unproductive
+  /// turn, or undoing small gains unchecked, made the result depend on that
+  /// rounding (one small kept gain can let later turns go much further).
+  /// `turn_min_gain` 0.005, not less: a turn costs a focused ASJ pass, a
+  /// max-min run and a surface check.
   /// The turns' ASJ pass visits the vertices in index order within blocks
   /// of `turn_block_size` vertices close in space, the blocks that do not
-  /// touch on all threads (`Asj_smoothing_settings::Visit_order`): one
-  /// vertex at a time in index order, the pass took 0.27 s a turn on
-  /// bunny_in; in blocks of 256, 0.18 s (2 threads). Plain colour order is
-  /// faster still but stalls the turns (bunny_in: MSJ 0.587). The size
-  /// changes the turns' path, not their quality on the whole: the 8
-  /// published rows took 37.8 s in all with 256, 36.8 s with 1024,
-  /// 41.4 s with 2048 and 44.7 s in index order, every row above its
-  /// published MSJ and ASJ (the manual has the table). The blocks and their
-  /// colours are set up once, from the positions at the first turn
-  /// (`Asj_smoother::restart`).
-  /// The focus band: 0.2 until 5 December 2026 (bunny_in 0.743 in 7.9 s,
-  /// fertility 0.752 in 3.4 s); 0.15 reaches 0.678 and 0.708 (published
-  /// 0.651 and 0.700) in 5.2 s and 2.6 s, the six other rows within 0.004
-  /// or above, and the 140 runs of the stress set as well (the manual's
-  /// Schedule and Stress Sets sections). 0.17: 0.725 in 7.2 s, 0.748 in 3.3 s.
-  /// With the max-min smoothing's cluster moves (later that day), tool
-  /// runs: 0.15 gives 0.679 in 5.0 s and 0.719 in 2.8 s, 0.2 gives 0.744 in
-  /// 6.8 s and 0.752 in 3.7 s.
+  /// touch on all threads (`Asj_smoothing_settings::Visit_order`): faster
+  /// than one vertex at a time, and unlike plain colour order it does not
+  /// stall the turns. The size changes the turns' path, not their quality
+  /// on the whole. The blocks and their colours are set up once, from the
+  /// positions at the first turn (`Asj_smoother::restart`).
+  /// The focus band trades MSJ for time: 0.15 meets the package's time
+  /// bounds on the published rows with every row above its published MSJ
+  /// and ASJ; a wider band (named parameter `turn_focus_band`) reaches a
+  /// higher MSJ in more time (RESULTS.md, "The turns' focus band 0.15").
   std::size_t turn_block_size = 256;
   int max_turns = 40;
   double turn_focus_band = 0.15;
@@ -233,37 +208,29 @@ struct Optimization_schedule
   /// (Global_asj_smoothing.h): at most this many L-BFGS iterations (0: none),
   /// ending when 5 iterations in a row gain less than `..._min_gain` each
   /// (mean soft minimum per hex); interior vertices of the hexes within
-  /// `..._floor_margin` of the MSJ stay for the Gauss-Seidel passes. bunny_in
-  /// (37.7k hexes, ASJ 0.936 after the turns): Gauss-Seidel alone, 30 passes
-  /// (its cap) and 4.7 s to 0.959; 40 iterations took 1.2 s to 0.962, and
-  /// the Gauss-Seidel passes after them stopped at 0.968 (see the manual).
-  /// The margin: 0.05 / 0.02 / 0.005 left bunny's passes after the L-BFGS
-  /// 1.51 / 0.93 / 0.72 s (ASJ 0.969 / 0.970 / 0.970), cap's and bust's
-  /// within noise (bust's ASJ 0.916 / 0.916 / 0.915)
+  /// `..._floor_margin` of the MSJ stay for the Gauss-Seidel passes.
+  /// Gauss-Seidel alone converges slowly on this smooth objective; the
+  /// L-BFGS start reaches a higher ASJ in less time. The margin saves time
+  /// in the passes after the L-BFGS at no measurable cost in ASJ.
   int final_asj_global_iterations = 100;
   double final_asj_global_min_gain = 2e-5;
   double final_asj_global_floor_margin = 0.02;
   /// the final ASJ smoothing: at most this many Gauss-Seidel passes; a pass
   /// that raises the ASJ by less than `asj_min_gain` ends it. 5e-4, not
-  /// 1e-4 (until 5 December 2026): on fertility refined twice (1.27M hexes)
-  /// the passes, 3.6 s each, still gained 2.7e-4 a pass and ran to their
-  /// cap, 107 s of 173 s (ASJ 0.962 to 0.970); with 5e-4 the run took 76 s.
-  /// The 8 published rows lose at most 0.003 of ASJ (bunny_in 0.969 to
-  /// 0.968, 5.47 to 4.65 s; the manual's Schedule section)
+  /// 1e-4: on large meshes the passes otherwise run to their cap for gains
+  /// of a few 1e-4 each, at a small ASJ cost on the published rows.
   int asj_passes = 30;
   double asj_min_gain = 5e-4;
   /// in the final ASJ smoothing, a vertex whose visit raised its objective
   /// (a sum of soft minima over its hexes) by at most this does not make
-  /// the vertices around it active for the next pass. With 0 every vertex
-  /// of bunny_in moved in each of the 30 passes; with 1e-4 the active set
-  /// shrinks (the 8 published rows: 0.2-0.7 s less each, the same MSJ and
-  /// ASJ to 3 decimals); with 1e-3 it shrinks to half, but the ASJ falls
-  /// (bunny 0.956 to 0.954, rockerarm 0.941 to 0.938)
+  /// the vertices around it active for the next pass: with 0 every vertex
+  /// moves in every pass; with 1e-4 the active set shrinks at no cost in
+  /// MSJ or ASJ; with 1e-3 it shrinks further but the ASJ falls.
   double asj_reactivation_gain = 1e-4;
   /// whether the final ASJ smoothing moves boundary vertices (guarded, and
   /// undone if the surface check fails) before a run with the boundary
   /// fixed. Default: the boundary fixed only (no guard query, no surface
-  /// check; 2-3x faster, ASJ within 0.01 of the guarded run, see the manual)
+  /// check: much faster, for a small loss of ASJ).
   bool final_asj_moves_boundary = false;
 
   /// The method of Xu & Chen (2018) alone: edge-angle untangling with
