@@ -110,7 +110,7 @@ void untangle_and_improve_again(Hex_mesh_arrays& arrays, const Hex_mesh_arrays& 
 /// reference check's)
 inline bool already_at_target(const Quality_statistics& q, const Quality_settings& s, const std::string& warning)
 {
-  return q.inverted == 0 && q.msj >= (std::min)(s.target_msj, s.schedule.excellent_msj) && warning.empty();
+  return q.inverted == 0 && q.msj >= s.aimed_msj() && warning.empty();
 }
 
 /// The result of a run with nothing to do: the input as it is, measured (its

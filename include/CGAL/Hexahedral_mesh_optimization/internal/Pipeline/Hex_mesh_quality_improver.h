@@ -98,6 +98,10 @@ struct Quality_settings
   /// optional reference surface (model coordinates); default: the boundary of `original`
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
+
+  /// the MSJ the stages aim at: the target, but never above
+  /// `Optimization_schedule::excellent_msj`
+  double aimed_msj() const { return (std::min)(target_msj, schedule.excellent_msj); }
 };
 
 template <class Visitor>
@@ -180,9 +184,7 @@ public:
 private:
   bool stopped() const { return time_limit_reached(m_s.time_limit); }
 
-  /// the MSJ the stages aim at: the target, but never above
-  /// `Optimization_schedule::excellent_msj`
-  double aimed_msj() const { return (std::min)(m_s.target_msj, m_s.schedule.excellent_msj); }
+  double aimed_msj() const { return m_s.aimed_msj(); }
 
   /// the reference surface, the normalisation and Ω_t
   void set_up(Run_state& st, const Hex_mesh_arrays& original)
