@@ -863,6 +863,54 @@ struct Stress_totals
 /// totals per mode and of the whole set: pass rates (0 inverted; surface
 /// error within the tolerance; MSJ at or above the unperturbed mesh's), the
 /// MSJ and error distributions, the time per 10k hexes.
+/// A mesh of the stress set as read: its unperturbed MSJ and its boundary,
+/// the reference of every run on it.
+struct Stress_base
+{
+  std::string name;
+  Mesh mesh;
+  double msj = 0.;
+  HMO::internal::Triangle_surface reference;
+};
+
+/// Reads the stress mesh `name` (under `dir`); false with `error` when it cannot be read.
+static bool read_stress_base(const std::string& dir, const std::string& name, Stress_base& base, std::string& error)
+{
+  CGAL::IO::Hex_mesh_io_error err;
+  base.name = name;
+  if(!CGAL::IO::read_hex_mesh(dir + "/" + name, base.mesh, &err))
+  {
+    error = err.what();
+    return false;
+  }
+  base.msj = CGAL::hex_mesh_quality(base.mesh).msj;
+  HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base.mesh, K()), base.reference);
+  return true;
+}
+
+/// One run of the stress set: `base` perturbed in `mode` with `seed`, then
+/// optimised against its unperturbed boundary (the optimiser call timed).
+struct Stress_run
+{
+  Mesh input;
+  Stress_draw draw;
+  HMO::Optimization_result result;
+  double seconds = 0.;
+};
+
+static Stress_run run_stress_case(const Stress_base& base, Stress_mode mode, unsigned seed, double tolerance)
+{
+  Stress_run run;
+  run.input = base.mesh;
+  run.draw = perturb_for_stress(run.input, mode, seed);
+  Mesh mesh = run.input;
+  Setup_visitor visitor;
+  const Clock::time_point start = Clock::now();
+  run.result = run_optimiser(mesh, false, base.reference, tolerance, visitor);
+  run.seconds = seconds_since(start);
+  return run;
+}
+
 static int stress_sets(const std::string& dir, const std::string& only, int seeds, int threads,
                        const std::string& write_dir)
 {
@@ -892,36 +940,29 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
   for(const std::string& name : stress_meshes())
   {
     if(!only.empty() && name.find(only) == std::string::npos) continue;
-    Mesh base;
-    CGAL::IO::Hex_mesh_io_error err;
-    if(!CGAL::IO::read_hex_mesh(dir + "/" + name, base, &err))
+    Stress_base base;
+    std::string error;
+    if(!read_stress_base(dir, name, base, error))
     {
-      std::cout << "| " << name << " | read error: " << err.what() << " |" << std::endl;
+      std::cout << "| " << name << " | read error: " << error << " |" << std::endl;
       continue;
     }
-    const double msj0 = CGAL::hex_mesh_quality(base).msj;
-    HMO::internal::Triangle_surface reference;
-    HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
-    const std::string reference_path = writer.enabled() ? writer.write_reference(name, reference) : std::string();
+    const std::string reference_path = writer.enabled() ? writer.write_reference(name, base.reference) : std::string();
     for(int mode = 0; mode < 3; ++mode)
     {
       Stress_totals line;
       for(int k = 0; k < seeds; ++k)
       {
-        Mesh mesh = base;
-        const Stress_draw draw = perturb_for_stress(mesh, Stress_mode(mode), unsigned(k + 1));
-        const std::string input_path =
-          writer.enabled() ? writer.write_input(name, stress_mode_files[mode], k + 1, mesh) : std::string();
-        Setup_visitor visitor;
-        const Clock::time_point start = Clock::now();
-        const HMO::Optimization_result r = run_optimiser(mesh, false, reference, tolerance, visitor);
-        const double seconds = seconds_since(start);
-        if(writer.enabled()) writer.add_run(input_path, reference_path, draw, r);
-        for(Stress_totals* t : {&line, &total[mode], &total[3]}) t->add(r, msj0, base.hexahedra.size(), seconds, tolerance);
+        const Stress_run run = run_stress_case(base, Stress_mode(mode), unsigned(k + 1), tolerance);
+        if(writer.enabled())
+          writer.add_run(writer.write_input(name, stress_mode_files[mode], k + 1, run.input), reference_path, run.draw,
+                         run.result);
+        for(Stress_totals* t : {&line, &total[mode], &total[3]})
+          t->add(run.result, base.msj, base.mesh.hexahedra.size(), run.seconds, tolerance);
       }
       char head[256];
       std::snprintf(head, sizeof head, "| %s | %s | %zu | %.3f | ", name.c_str(), stress_mode_names[mode],
-                    base.hexahedra.size(), msj0);
+                    base.mesh.hexahedra.size(), base.msj);
       std::cout << head << line_of(line) << std::endl;
     }
   }
@@ -1007,6 +1048,14 @@ static int ablate(const std::string& dir, const std::string& only, const std::st
                "0 inverted | error ≤ 0.005 | MSJ ≥ unperturbed | MSJ min / median | error median / max | stress s |\n"
             << "|---|---:|---|---:|---:|---:|---:|---:|---|---|---:|\n";
   const Thread_limit limit(threads);
+  std::vector<Stress_base> bases; // read once for every variant
+  for(const std::string& name : stress_meshes())
+  {
+    if(!only.empty() && name.find(only) == std::string::npos) continue;
+    Stress_base base;
+    std::string error;
+    if(read_stress_base(dir, name, base, error)) bases.push_back(std::move(base));
+  }
   for(const Ablation& a : ablations())
   {
     if(!variant.empty() && a.name != "default" && a.name.find(variant) == std::string::npos) continue;
@@ -1032,26 +1081,13 @@ static int ablate(const std::string& dir, const std::string& only, const std::st
       std::snprintf(b, sizeof b, "%s%.3f", row_msj.empty() ? "" : " ", r.msj_after);
       row_msj += b;
     }
-    for(const std::string& name : stress_meshes())
-    {
-      if(!only.empty() && name.find(only) == std::string::npos) continue;
-      Mesh base;
-      CGAL::IO::Hex_mesh_io_error err;
-      if(!CGAL::IO::read_hex_mesh(dir + "/" + name, base, &err)) continue;
-      const double msj0 = CGAL::hex_mesh_quality(base).msj;
-      HMO::internal::Triangle_surface reference;
-      HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(base, K()), reference);
+    for(const Stress_base& base : bases)
       for(int mode = 0; mode < 3; ++mode)
         for(int k = 0; k < seeds; ++k)
         {
-          Mesh mesh = base;
-          perturb_for_stress(mesh, Stress_mode(mode), unsigned(k + 1));
-          Setup_visitor visitor;
-          const Clock::time_point start = Clock::now();
-          const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
-          t.stress.add(r, msj0, base.hexahedra.size(), seconds_since(start), 0.005);
+          const Stress_run run = run_stress_case(base, Stress_mode(mode), unsigned(k + 1), 0.005);
+          t.stress.add(run.result, base.msj, base.mesh.hexahedra.size(), run.seconds, 0.005);
         }
-    }
     char line[1024];
     std::snprintf(line, sizeof line, "| %s | %d of %d | %s | %.1f | ", a.name.c_str(), t.rows_met, t.rows,
                   row_msj.c_str(), t.rows_seconds);
