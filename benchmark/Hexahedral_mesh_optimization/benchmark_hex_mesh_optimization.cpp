@@ -174,6 +174,8 @@ namespace HMO = CGAL::Hexahedral_mesh_optimization;
 namespace HP = CGAL::hex_mesh_parameters;
 typedef std::chrono::steady_clock Clock;
 
+#include "boundary_layer_set.h" // uses Mesh, K and HMO
+
 static double seconds_since(Clock::time_point t)
 {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -990,6 +992,67 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
 }
 
 // ---------------------------------------------------------------------------
+// --boundary-layer
+
+/// The boundary-layer class (`boundary_layer_set.h`): `seeds` generated wall
+/// meshes with pushed vertices, each optimised by `CGAL::optimize_hex_mesh`
+/// with defaults and the generated boundary as reference. One line per run,
+/// then the pass rates of the repair criteria: 0 inverted; at least 99 % of
+/// the wall columns with their first-layer height within 10 %; wall vertices
+/// on the wall to 1e-9 of the diagonal; at most 10 vertices moved per pushed one.
+static int boundary_layer_sets(int seeds, int threads)
+{
+  const Thread_limit limit(threads);
+  std::cout << "Boundary-layer class: graded wall meshes (planar for odd seeds, curved for even ones), vertices of "
+               "layers 2-4 pushed below the layer under them; reference = the generated boundary, default options\n\n"
+            << "| seed | wall | hexes | first layer | growth | pushed | inverted in → out | MSJ out | columns within "
+               "10 % | worst height change | wall error / diagonal | vertices moved | moved per pushed | s |\n"
+            << "|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  int runs = 0, untangled = 0, heights = 0, on_wall = 0, local = 0;
+  std::vector<double> per_pushed, wall_errors, height_share;
+  for(int k = 1; k <= seeds; ++k)
+  {
+    const boundary_layer::Case c = boundary_layer::make_case(unsigned(k));
+    HMO::internal::Triangle_surface reference;
+    HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(c.mesh, K()), reference);
+    const HMO::internal::Reference_distance_index index(reference);
+    Mesh mesh = c.input;
+    Setup_visitor visitor;
+    const Clock::time_point start = Clock::now();
+    const HMO::Optimization_result r = run_optimiser(mesh, false, reference, 0.005, visitor);
+    const double seconds = seconds_since(start);
+    const boundary_layer::Measures m = boundary_layer::measure(c, mesh, index);
+    ++runs;
+    untangled += r.inverted_after == 0;
+    heights += m.columns_within >= 0.99;
+    on_wall += m.wall_error <= 1e-9;
+    local += m.moved_per_pushed <= 10.;
+    per_pushed.push_back(m.moved_per_pushed);
+    wall_errors.push_back(m.wall_error);
+    height_share.push_back(m.columns_within);
+    char b[512];
+    std::snprintf(b, sizeof b, "| %d | %s | %zu | %.2g | %.2f | %zu | %zu → %zu | %.3f | %.1f %% | %.0f %% | %.1e | %zu | %.0f | %.2f |",
+                  k, c.curved ? "curved" : "planar", c.mesh.hexahedra.size(), c.first_layer, c.growth,
+                  c.pushed.size(), r.inverted_before, r.inverted_after, r.msj_after, 100. * m.columns_within,
+                  100. * m.worst_height_change, m.wall_error, m.moved, m.moved_per_pushed, seconds);
+    std::cout << b << std::endl;
+  }
+  auto pct = [&](int n) {
+    char b[48];
+    std::snprintf(b, sizeof b, "%d of %d (%.0f %%)", n, runs, runs ? 100. * n / runs : 0.);
+    return std::string(b);
+  };
+  std::cout << "\nPass rates: 0 inverted " << pct(untangled) << "; ≥ 99 % of the columns with their first layer within 10 % "
+            << pct(heights) << "; wall vertices on the wall to 1e-9 of the diagonal " << pct(on_wall)
+            << "; at most 10 vertices moved per pushed vertex " << pct(local) << "\n";
+  char b[512];
+  std::snprintf(b, sizeof b, "Medians: columns within 10 %% %.1f %%, wall error %.1e, moved per pushed %.0f\n",
+                100. * quantile_of(height_share, 0.5), quantile_of(wall_errors, 0.5), quantile_of(per_pushed, 0.5));
+  std::cout << b << std::flush;
+  return 0;
+}
+
+// ---------------------------------------------------------------------------
 // --ablate
 
 /// A variant of the default pipeline: one stage turned off.
@@ -1384,7 +1447,10 @@ static void usage(std::ostream& out)
          "  --scaling-max-hexes N  with --scaling, skip the cases of more than N hexes\n"
          "  --stress               stress sets: every valid shared mesh perturbed (interior / all vertices /\n"
          "                         boundary-locked)\n"
-         "  --stress-seeds N       with --stress or --ablate, N draws per mesh and mode (default 10)\n"
+         "  --stress-seeds N       with --stress or --ablate, N draws per mesh and mode (default 10);\n"
+         "                         with --boundary-layer, N generated meshes\n"
+         "  --boundary-layer       the boundary-layer class: generated graded wall meshes with pushed\n"
+         "                         vertices; first-layer heights, wall distance, vertices moved\n"
          "  --stress-write DIR     with --stress, write each perturbed input, the reference surfaces and\n"
          "                         a line per run (stress_runs.tsv) into the existing folder DIR\n"
          "  --ablate               the default pipeline, then without each stage in turn, over the 8\n"
@@ -1412,7 +1478,7 @@ int main(int argc, char** argv)
   bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false, paper_column = true;
   long long threads = 0, max_hexes = 0, stress_seeds = 10;
   std::string stress_write, ablate_variant, results, variant;
-  bool ablate_mode = false;
+  bool ablate_mode = false, boundary_layer_mode = false;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -1431,6 +1497,7 @@ int main(int argc, char** argv)
     }
     else if(a == "--scaling") scaling_mode = true;
     else if(a == "--stress") stress_mode = true;
+    else if(a == "--boundary-layer") boundary_layer_mode = true;
     else if(a == "--ablate") ablate_mode = true;
     else if(a == "--ablate-only" && has_value) ablate_variant = argv[++i];
     else if(a == "--stress-seeds" && has_value)
@@ -1515,7 +1582,7 @@ int main(int argc, char** argv)
   }
   struct stat st;
   const bool have_data = ::stat((dir + "/README.md").c_str(), &st) == 0;
-  if(!scaling_mode && !have_data)
+  if(!scaling_mode && !boundary_layer_mode && !have_data)
   {
     std::cout << "shared data folder " << dir << " is absent: nothing to benchmark" << std::endl;
     return 0;
@@ -1532,6 +1599,11 @@ int main(int argc, char** argv)
   {
     section = "scaling";
     status = scaling(dir, have_data, untangle_only, only, std::size_t(max_hexes), thread_runs);
+  }
+  else if(boundary_layer_mode)
+  {
+    section = "boundary-layer";
+    status = boundary_layer_sets(int(stress_seeds), int(threads));
   }
   else if(ablate_mode)
   {
