@@ -14,6 +14,7 @@
 
 #include <CGAL/license/Hexahedral_mesh_optimization.h>
 
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_quality.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -60,16 +61,6 @@ Hex_mesh_arrays extract_with_traits(const HexMesh& mesh, const NamedParameters& 
 
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
-
-/*!
-\ingroup PkgHexahedralMeshOptimizationQuality
-
-\brief Quality summary of a hexahedral mesh, as printed by the tool and
-returned by `hex_mesh_quality()`.
-
-"Scaled Jacobian" is the Verdict definition (see `hex_scaled_jacobian()`).
-*/
-typedef Hexahedral_mesh_optimization::internal::Quality_statistics Hex_mesh_quality;
 
 /*!
 \ingroup PkgHexahedralMeshOptimizationQuality

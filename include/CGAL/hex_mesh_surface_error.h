@@ -14,6 +14,7 @@
 
 #include <CGAL/license/Hexahedral_mesh_optimization.h>
 
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -38,15 +39,6 @@
 #include <vector>
 
 namespace CGAL {
-
-/*!
-\ingroup PkgHexahedralMeshOptimizationRef
-
-\brief Distances between the boundary of a hexahedral mesh and a reference
-surface, as computed by `hex_mesh_surface_distance()`. All values are in model
-units.
-*/
-typedef Hexahedral_mesh_optimization::internal::Surface_distance Hex_mesh_surface_distance;
 
 namespace Hexahedral_mesh_optimization {
 namespace internal {

@@ -20,7 +20,7 @@
 // parsed (validate_hex_mesh.h) and names the offending record of the file;
 // every writer refuses an invalid mesh and replaces its target atomically.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Read_context.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_INP.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_MEDIT.h>

@@ -18,7 +18,7 @@
 // where each record of the file starts, and the final validation that turns
 // a defect of the parsed mesh into an error naming the record of the file.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>
 

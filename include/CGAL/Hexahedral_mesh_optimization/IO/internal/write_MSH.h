@@ -20,7 +20,7 @@
 // reference (none for references <= 0), and the cell fields become
 // $ElementData, which gmsh shows as views.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Id_map.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>

@@ -18,7 +18,7 @@
 // fields, then produce the file atomically (see Atomic_output_file).
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Atomic_output_file.h>
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Output_buffer.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>

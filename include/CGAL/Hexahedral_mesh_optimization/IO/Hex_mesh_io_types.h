@@ -9,14 +9,14 @@
 //
 // Author(s) : Hexahedral_mesh_optimization contributors
 
-#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
-#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
 
 #include <CGAL/license/Hexahedral_mesh_optimization.h>
 
-// The two public types of the hex mesh I/O functions. They live here so that
-// the internal readers and writers can use them; users include
-// <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>.
+// The public types of the hex mesh I/O functions, in a header of their own
+// so that the internal readers and writers can use them; users include
+// <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>, which includes it.
 
 #include <cstddef>
 #include <string>
@@ -96,4 +96,4 @@ enum class Gmsh_version
 } // namespace IO
 } // namespace CGAL
 
-#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
