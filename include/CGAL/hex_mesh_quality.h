@@ -1,11 +1,20 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEX_MESH_QUALITY_H
 #define CGAL_HEX_MESH_QUALITY_H
 
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
+
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_quality.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -52,16 +61,6 @@ Hex_mesh_arrays extract_with_traits(const HexMesh& mesh, const NamedParameters& 
 
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
-
-/*!
-\ingroup PkgHexahedralMeshOptimizationQuality
-
-\brief Quality summary of a hexahedral mesh, as printed by the tool and
-returned by `hex_mesh_quality()`.
-
-"Scaled Jacobian" is the Verdict definition (see `hex_scaled_jacobian()`).
-*/
-typedef Hexahedral_mesh_optimization::internal::Quality_statistics Hex_mesh_quality;
 
 /*!
 \ingroup PkgHexahedralMeshOptimizationQuality

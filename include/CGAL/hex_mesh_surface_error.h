@@ -1,11 +1,20 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEX_MESH_SURFACE_ERROR_H
 #define CGAL_HEX_MESH_SURFACE_ERROR_H
 
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
+
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -30,15 +39,6 @@
 #include <vector>
 
 namespace CGAL {
-
-/*!
-\ingroup PkgHexahedralMeshOptimizationRef
-
-\brief Distances between the boundary of a hexahedral mesh and a reference
-surface, as computed by `hex_mesh_surface_distance()`. All values are in model
-units.
-*/
-typedef Hexahedral_mesh_optimization::internal::Surface_distance Hex_mesh_surface_distance;
 
 namespace Hexahedral_mesh_optimization {
 namespace internal {

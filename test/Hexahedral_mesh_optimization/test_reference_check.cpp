@@ -280,6 +280,22 @@ void test_invalid_references()
   HMO_CHECK(!t.ok);
   HMO_CHECK(t.error.find("TetGen") != std::string::npos);
   HMO_CHECK(!HMO::tetrahedralize_closed_surface(pts, std::vector<HMO::Tri>()).ok);
+
+  // TetGen runs in this process: a failure again gives the same message, and
+  // TetGen works afterwards (on the box [0,2]x[0,1.5]x[0,1], outward
+  // triangles)
+  const HMO::Surface_tetrahedralization again = HMO::tetrahedralize_closed_surface(pts, tris);
+  HMO_CHECK(!again.ok && again.error == t.error);
+  std::vector<Vec3> box_pts;
+  for(int i = 0; i < 8; ++i)
+    box_pts.push_back({(i & 1) ? 2. : 0., (i & 2) ? 1.5 : 0., (i & 4) ? 1. : 0.});
+  const std::vector<HMO::Tri> box_tris = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                          {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  HMO_CHECK_CLOSE(HMO::closed_surface_volume(box_pts, box_tris), 3., 1e-12);
+  const HMO::Surface_tetrahedralization after = HMO::tetrahedralize_closed_surface(box_pts, box_tris, true);
+  HMO_CHECK(after.ok);
+  HMO_CHECK_CLOSE(after.volume, 3., 1e-12);
+  HMO_CHECK(after.tetrahedra.size() == after.number_of_tetrahedra);
 }
 
 void test_bunny()

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The package's own named parameters. CGAL 5.5 offers no way for a package
 // to add chainable member functions to `CGAL::Named_function_parameters`, so

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Reading and writing `Indexed_hex_mesh` in the MEDIT (.mesh), legacy VTK
 // (.vtk), VTK XML (.vtu), gmsh (.msh), Abaqus (.inp) and Exodus II (.exo,
@@ -12,7 +20,7 @@
 // parsed (validate_hex_mesh.h) and names the offending record of the file;
 // every writer refuses an invalid mesh and replaces its target atomically.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Read_context.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_INP.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/read_MEDIT.h>

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_LCC_HEX_MESH_IO_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_LCC_HEX_MESH_IO_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Reading and writing a hex mesh stored in a 3D linear cell complex, through
 // an `Indexed_hex_mesh` (the formats are those of `IO/hex_mesh_io.h`).

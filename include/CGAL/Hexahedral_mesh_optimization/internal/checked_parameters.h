@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_CHECKED_PARAMETERS_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_CHECKED_PARAMETERS_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The numeric named parameters read by more than one public function, each
 // with its default and its range in one place: a value out of range, NaN

@@ -1,16 +1,24 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_READ_CONTEXT_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_READ_CONTEXT_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // What every reader shares: reporting an error or a warning, remembering
 // where each record of the file starts, and the final validation that turns
 // a defect of the parsed mesh into an error naming the record of the file.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>
 

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_XML_SCANNER_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_XML_SCANNER_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Just enough XML for VTK's .vtu files: the tags in order, with their
 // attributes (entities decoded) and line numbers; the text between tags is

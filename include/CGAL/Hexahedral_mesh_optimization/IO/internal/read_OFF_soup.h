@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_READ_OFF_SOUP_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_READ_OFF_SOUP_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // An ASCII OFF file as a polygon soup, for the reference surfaces. CGAL 5.5's
 // OFF scanner converts a negative face index, read as a double, to an

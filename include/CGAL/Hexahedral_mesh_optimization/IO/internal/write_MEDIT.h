@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_MEDIT_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_MEDIT_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Writer of ASCII MEDIT (.mesh) files, with the optional boundary sections
 // and references of the mesh. Indices are written 1-based.

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_MSH_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_MSH_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Writer of gmsh .msh files, version 2.2 or 4.1, ASCII or binary (byte order
 // of this machine, data size 8). The hexahedra keep their order; each
@@ -12,7 +20,7 @@
 // reference (none for references <= 0), and the cell fields become
 // $ElementData, which gmsh shows as views.
 
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Id_map.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/write_file.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>

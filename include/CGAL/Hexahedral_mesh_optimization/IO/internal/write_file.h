@@ -1,16 +1,24 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_FILE_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_WRITE_FILE_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The steps every writer shares: refuse an invalid mesh or inconsistent
 // fields, then produce the file atomically (see Atomic_output_file).
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Atomic_output_file.h>
-#include <CGAL/Hexahedral_mesh_optimization/IO/internal/Hex_mesh_io_types.h>
+#include <CGAL/Hexahedral_mesh_optimization/IO/Hex_mesh_io_types.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Output_buffer.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>

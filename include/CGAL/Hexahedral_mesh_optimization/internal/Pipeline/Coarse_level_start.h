@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_COARSE_LEVEL_START_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_COARSE_LEVEL_START_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The coarse-level start of the quality stages: a valid mesh recognised as a
 // 1→8 refinement (Refinement_hierarchy.h) is optimised at a coarse level

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_QUALITY_IMPROVER_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_QUALITY_IMPROVER_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Quality improvement after untangling (Sections 3.3 and 3.4 and the final
 // smoothing), on flat arrays. The driver `run` calls one method per stage:

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_UNTANGLER_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_HEX_MESH_UNTANGLER_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The untangling pipeline on flat arrays (Sections 3.1 and 3.2):
 //   1. normalise the mesh (mean edge length 0.025, about its centroid) and

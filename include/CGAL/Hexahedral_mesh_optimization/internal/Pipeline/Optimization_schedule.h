@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_OPTIMIZATION_SCHEDULE_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_OPTIMIZATION_SCHEDULE_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The schedule of the two drivers (Hex_mesh_untangler.h and
 // Hex_mesh_quality_improver.h): how much work each stage may do and when it

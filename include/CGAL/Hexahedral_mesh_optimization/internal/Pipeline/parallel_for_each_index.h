@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_PARALLEL_FOR_EACH_INDEX_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_PIPELINE_PARALLEL_FOR_EACH_INDEX_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The package's one parallel loop: g(i) for i in [0, n) on TBB's threads when
 // the package is linked with TBB, in order otherwise. Its callers make the

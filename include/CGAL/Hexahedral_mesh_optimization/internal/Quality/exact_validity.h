@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_QUALITY_EXACT_VALIDITY_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_QUALITY_EXACT_VALIDITY_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The exact validity certificate: the sign of each of the 9 Jacobian
 // samples of a hex (scaled_jacobian.h), decided exactly on its double

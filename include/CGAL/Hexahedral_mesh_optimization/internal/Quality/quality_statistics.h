@@ -1,14 +1,23 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_QUALITY_QUALITY_STATISTICS_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_QUALITY_QUALITY_STATISTICS_H
 
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
+
 // Mesh-level quality figures (inverted count, MSJ, ASJ, histogram) computed
 // from the per-element Verdict scaled Jacobian.
 
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_quality.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/parallel_for_each_index.h>
@@ -22,23 +31,8 @@ namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 
-/// Quality of a hexahedral mesh. The histogram has `histogram_bins` equal
-/// bins over [-1, 1]; bin k counts elements with scaled Jacobian in
-/// [-1 + k w, -1 + (k+1) w), the last bin includes 1.
-struct Quality_statistics
-{
-  static constexpr int histogram_bins = 20;
-
-  std::size_t hexes = 0;
-  std::size_t vertices = 0;
-  std::size_t inverted = 0;   ///< elements with scaled Jacobian < 0
-  double msj = 0.;            ///< minimum scaled Jacobian
-  double asj = 0.;            ///< average scaled Jacobian
-  std::vector<std::size_t> histogram = std::vector<std::size_t>(histogram_bins, 0);
-
-  static double bin_lower(int k) { return -1. + 2. * k / histogram_bins; }
-  static double bin_upper(int k) { return -1. + 2. * (k + 1) / histogram_bins; }
-};
+/// Quality of a hexahedral mesh: the public `CGAL::Hex_mesh_quality`
+typedef CGAL::Hex_mesh_quality Quality_statistics;
 
 /// the scaled Jacobian of every hex, on all threads (each value on its own:
 /// the same on any number of threads). The drivers take the statistics

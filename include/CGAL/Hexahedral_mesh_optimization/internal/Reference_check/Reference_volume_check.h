@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_REFERENCE_CHECK_REFERENCE_VOLUME_CHECK_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_REFERENCE_CHECK_REFERENCE_VOLUME_CHECK_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // How a hex mesh fills the volume bounded by a reference surface
 // (`CGAL::check_hex_mesh_against_reference()`).
@@ -15,15 +23,26 @@
 //   quality refinement, which would only cost time), and the volume is the
 //   sum of its tetrahedra. TetGen also validates the reference: it stops on
 //   intersecting facets, tiny features or nearly coincident facets. Built
-//   with TETLIBRARY it then throws an int, but TetGen 1.5 (Debian's
-//   libtet1.5) frees its mesh before throwing and again in the destructor
-//   run by the unwinding: the process crashes (SIGSEGV) before any catch.
-//   So on POSIX systems TetGen runs in a fork()ed child that sends its
-//   result back through a pipe (a small fixed cost; copy-on-write
-//   memory); a crash, or an exit(code) of a TetGen built without
-//   TETLIBRARY, becomes an error message. Elsewhere it runs in process,
-//   where the validation below must keep it from failing. Before TetGen,
-//   the reference must be non-empty, closed
+//   with TETLIBRARY it then throws an int; but TetGen 1.5.0 (Debian's
+//   libtet1.5) frees its mesh before throwing, and its tetrahedralize()
+//   keeps that mesh on its stack, whose destructor frees it again during
+//   the unwinding: the process crashes before any catch. So TetGen runs
+//   here in process through a driver of its own (tetrahedralize_plc()):
+//   the same steps as tetrahedralize() for "pzQ" (without the mesh
+//   optimisation, which moves no boundary and so does not change the
+//   volume), on a mesh whose destructor is not run after TetGen threw, as
+//   TetGen has freed it then (all its throws from inside the mesh pass the
+//   mesh to terminatetetgen(); only a failed malloc of its memory pools
+//   does not, and then the mesh is leaked rather than freed twice). The
+//   int becomes the error message of the result. On that failure path
+//   TetGen also leaks the temporary arrays of the step that failed
+//   (bounded by the size of the reference) and may print a line on the
+//   standard output. TetGen keeps global state (the tolerances of its
+//   predicates, set by exactinit() from the bounding box), so calls are
+//   serialised by a mutex: the check can be called from several threads.
+//   No process is created: a program that wants TetGen isolated runs the
+//   check in a process of its own. Before TetGen, the reference must be
+//   non-empty, closed
 //   (no border edge: TetGen would tetrahedralise a leaking surface without
 //   complaint and remove everything or nothing) and free of
 //   self-intersections (PMP::self_intersections: a clearer message than
@@ -85,21 +104,13 @@
 #include <tetgen.h>
 #endif
 
-#if defined(CGAL_HMO_HAVE_TETGEN) && (defined(__unix__) || defined(__APPLE__))
-#include <cerrno>
-#include <fcntl.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <unistd.h>
-#endif
-
 #include <array>
 #include <chrono>
-#include <cstdint>
-#include <cstring>
 #include <cmath>
+#include <ctime>
 #include <exception>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <string>
 #include <utility>
@@ -262,14 +273,68 @@ inline void read_tetgen_output(const tetgenio& out, bool keep_tetrahedra, Surfac
     r.ok = true;
   }
 }
+
+/// TetGen's tetrahedralize() for the switches "pzQ" (TetGen 1.5.0's own
+/// sequence of steps, without the mesh optimisation), on a mesh that is
+/// not destroyed a second time when TetGen throws (see the file comment).
+inline void tetrahedralize_plc(tetgenio& in, tetgenio& out)
+{
+  tetgenbehavior b;
+  char switches[] = "pzQ";
+  if(!b.parse_commandline(switches))
+    throw 10;
+  // the mesh's storage, released in any case; the mesh's destructor runs
+  // only if TetGen did not throw an int (it has freed the mesh then)
+  struct Storage
+  {
+    void* p = ::operator new(sizeof(tetgenmesh));
+    ~Storage() { ::operator delete(p); }
+  } storage;
+  tetgenmesh* m = new(storage.p) tetgenmesh();
+  try
+  {
+    m->b = &b;
+    m->in = &in;
+    m->initializepools();
+    m->transfernodes();
+    exactinit(b.verbose, b.noexact, b.nostaticfilter, m->xmax - m->xmin, m->ymax - m->ymin, m->zmax - m->zmin);
+    std::clock_t step_time = 0;
+    m->incrementaldelaunay(step_time);
+    m->meshsurface();
+    m->constraineddelaunay(step_time);
+    m->carveholes();
+    if(m->dupverts > 0 || m->unuverts > 0)
+      m->jettisonnodes();
+    out.firstnumber = in.firstnumber;
+    out.mesh_dim = 3;
+    m->outnodes(&out);
+    if(m->tetrahedrons->items > 0)
+      m->outelements(&out);
+  }
+  catch(int)
+  {
+    throw; // TetGen freed the mesh before throwing: no destructor
+  }
+  catch(...)
+  {
+    m->~tetgenmesh(); // bad_alloc of a `new` inside TetGen: the mesh is intact
+    throw;
+  }
+  m->~tetgenmesh();
+}
+
+/// the one lock of TetGen's global state (see the file comment)
+inline std::mutex& tetgen_mutex()
+{
+  static std::mutex m;
+  return m;
+}
 #endif
 
-/// TetGen in this process: a failure that TetGen 1.5 reports by throwing
-/// crashes it (see the file comment), so this runs in a child process
-/// wherever one can be made.
-inline Surface_tetrahedralization run_in_process(const std::vector<Vec3>& points,
-                                                 const std::vector<Tri>& triangles,
-                                                 bool keep_tetrahedra)
+/// TetGen in this process, its failures turned into `error`.
+inline Surface_tetrahedralization run_tetgen_in_process(const std::vector<Vec3>& points,
+                                                        const std::vector<Tri>& triangles,
+                                                        bool keep_tetrahedra)
 {
   Surface_tetrahedralization r;
 #ifndef CGAL_HMO_HAVE_TETGEN
@@ -282,8 +347,10 @@ inline Surface_tetrahedralization run_in_process(const std::vector<Vec3>& points
   {
     tetgenio in, out;
     fill_tetgen_input(points, triangles, in);
-    char switches[] = "pzQ";
-    tetrahedralize(switches, &in, &out);
+    {
+      std::lock_guard<std::mutex> lock(tetgen_mutex());
+      tetrahedralize_plc(in, out);
+    }
     read_tetgen_output(out, keep_tetrahedra, r);
   }
   catch(int code)
@@ -306,147 +373,11 @@ inline Surface_tetrahedralization run_in_process(const std::vector<Vec3>& points
   return r;
 }
 
-#if defined(CGAL_HMO_HAVE_TETGEN) && (defined(__unix__) || defined(__APPLE__))
-#define CGAL_HMO_TETGEN_IN_CHILD_PROCESS 1
-
-template <class T>
-void put(std::vector<char>& buffer, const T& value)
-{
-  const char* p = reinterpret_cast<const char*>(&value);
-  buffer.insert(buffer.end(), p, p + sizeof(T));
-}
-
-template <class T>
-bool get(const std::vector<char>& buffer, std::size_t& at, T& value)
-{
-  if(buffer.size() < at + sizeof(T))
-    return false;
-  std::memcpy(&value, buffer.data() + at, sizeof(T));
-  at += sizeof(T);
-  return true;
-}
-
-inline void serialize(const Surface_tetrahedralization& r, std::vector<char>& b)
-{
-  put(b, std::uint64_t(r.ok));
-  put(b, std::uint64_t(r.number_of_tetrahedra));
-  put(b, r.volume);
-  put(b, std::uint64_t(r.error.size()));
-  b.insert(b.end(), r.error.begin(), r.error.end());
-  put(b, std::uint64_t(r.points.size()));
-  for(const Vec3& p : r.points)
-    put(b, p);
-  put(b, std::uint64_t(r.tetrahedra.size()));
-  for(const auto& t : r.tetrahedra)
-    for(std::size_t i : t)
-      put(b, std::uint64_t(i));
-}
-
-inline bool deserialize(const std::vector<char>& b, Surface_tetrahedralization& r)
-{
-  std::size_t at = 0;
-  std::uint64_t ok = 0, n = 0, len = 0;
-  if(!get(b, at, ok) || !get(b, at, n) || !get(b, at, r.volume) || !get(b, at, len) || b.size() < at + len)
-    return false;
-  r.ok = ok != 0;
-  r.number_of_tetrahedra = std::size_t(n);
-  r.error.assign(b.data() + at, std::size_t(len));
-  at += std::size_t(len);
-  if(!get(b, at, n) || b.size() < at + n * sizeof(Vec3))
-    return false;
-  r.points.resize(std::size_t(n));
-  for(Vec3& p : r.points)
-    get(b, at, p);
-  if(!get(b, at, n) || b.size() < at + n * 4 * sizeof(std::uint64_t))
-    return false;
-  r.tetrahedra.resize(std::size_t(n));
-  for(auto& t : r.tetrahedra)
-    for(std::size_t& i : t)
-    {
-      std::uint64_t v = 0;
-      get(b, at, v);
-      i = std::size_t(v);
-    }
-  return at == b.size();
-}
-
-/// runs TetGen in a child process; `false` when no child could be made
-inline bool run_in_child_process(const std::vector<Vec3>& points,
-                                 const std::vector<Tri>& triangles,
-                                 bool keep_tetrahedra,
-                                 Surface_tetrahedralization& r)
-{
-  int fd[2];
-  if(::pipe(fd) != 0)
-    return false;
-  const pid_t pid = ::fork();
-  if(pid < 0)
-  {
-    ::close(fd[0]);
-    ::close(fd[1]);
-    return false;
-  }
-  if(pid == 0)
-  {
-    // the child: TetGen quiet even on error, the result through the pipe,
-    // and _exit so that nothing of the parent (buffers, atexit) runs twice
-    ::close(fd[0]);
-    const int devnull = ::open("/dev/null", O_WRONLY);
-    if(devnull >= 0)
-    {
-      ::dup2(devnull, 1);
-      ::dup2(devnull, 2);
-    }
-    std::vector<char> b;
-    serialize(run_in_process(points, triangles, keep_tetrahedra), b);
-    std::size_t done = 0;
-    while(done < b.size())
-    {
-      const ssize_t w = ::write(fd[1], b.data() + done, b.size() - done);
-      if(w < 0 && errno == EINTR)
-        continue;
-      if(w <= 0)
-        ::_exit(1);
-      done += std::size_t(w);
-    }
-    ::_exit(0);
-  }
-  ::close(fd[1]);
-  std::vector<char> b;
-  char chunk[1 << 16];
-  for(;;)
-  {
-    const ssize_t n = ::read(fd[0], chunk, sizeof(chunk));
-    if(n < 0 && errno == EINTR)
-      continue;
-    if(n <= 0)
-      break;
-    b.insert(b.end(), chunk, chunk + n);
-  }
-  ::close(fd[0]);
-  int status = 0;
-  while(::waitpid(pid, &status, 0) < 0 && errno == EINTR)
-  {}
-  if(WIFEXITED(status) && WEXITSTATUS(status) == 0 && deserialize(b, r))
-    return true;
-  r = Surface_tetrahedralization();
-  if(WIFSIGNALED(status))
-    r.error = "TetGen stopped on the reference surface (a self-intersection, a very small feature or "
-              "nearly coincident facets; TetGen 1.5 then crashes, here in a child process, with signal " +
-              std::to_string(WTERMSIG(status)) + ")";
-  else if(WIFEXITED(status) && WEXITSTATUS(status) != 0)
-    r.error = tetgen_error_message(WEXITSTATUS(status));
-  else
-    r.error = "TetGen's result could not be read back from its process";
-  return true;
-}
-#endif
-
 } // namespace tetgen_detail
 
 /// Tetrahedralises the volume bounded by a closed triangle soup with TetGen
-/// ("pzQ"), in a child process on POSIX systems. Never throws, never
-/// crashes on bad input: a failure is reported in `error`.
+/// ("pzQ"), in this process. Never throws, never crashes on the failures
+/// TetGen reports: a failure is reported in `error`.
 inline Surface_tetrahedralization tetrahedralize_closed_surface(const std::vector<Vec3>& points,
                                                                 const std::vector<Tri>& triangles,
                                                                 bool keep_tetrahedra = false)
@@ -455,13 +386,8 @@ inline Surface_tetrahedralization tetrahedralize_closed_surface(const std::vecto
   Surface_tetrahedralization r;
   if(triangles.empty())
     r.error = "the reference surface has no triangle";
-#ifdef CGAL_HMO_TETGEN_IN_CHILD_PROCESS
-  else if(!tetgen_detail::run_in_child_process(points, triangles, keep_tetrahedra, r))
-    r = tetgen_detail::run_in_process(points, triangles, keep_tetrahedra);
-#else
   else
-    r = tetgen_detail::run_in_process(points, triangles, keep_tetrahedra);
-#endif
+    r = tetgen_detail::run_tetgen_in_process(points, triangles, keep_tetrahedra);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SOLVERS_LBFGS_HISTORY_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SOLVERS_LBFGS_HISTORY_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The memory of L-BFGS (Nocedal & Wright, "Numerical Optimization", 2nd ed.,
 // Algorithm 7.4): the last m pairs s = x_{k+1} − x_k, y = g_{k+1} − g_k, and

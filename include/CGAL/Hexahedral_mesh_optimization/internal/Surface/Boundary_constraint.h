@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_BOUNDARY_CONSTRAINT_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_BOUNDARY_CONSTRAINT_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // What the optimiser needs to know about a boundary vertex (Eq. 6 of the
 // paper): its class, its reference position v̄ on the target surface and the

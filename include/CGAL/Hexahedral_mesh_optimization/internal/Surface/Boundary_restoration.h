@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_BOUNDARY_RESTORATION_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_BOUNDARY_RESTORATION_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Stage "surface restoration": moves boundary vertices back toward a home
 // position on the reference, one vertex at a time, wherever the quality

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_REFERENCE_FIT_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_REFERENCE_FIT_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Does a reference surface fit the mesh it is given with? (see
 // Reference_fit.h for the verdicts). Checked before any stage moves a vertex:

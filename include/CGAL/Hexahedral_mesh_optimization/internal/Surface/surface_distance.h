@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_SURFACE_DISTANCE_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_SURFACE_SURFACE_DISTANCE_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // The surface error of the paper's tables: the symmetric Hausdorff distance
 // between the boundary of a hex mesh and a reference surface, relative to a
@@ -28,6 +36,7 @@
 //   `metro_diagonal` gives that value, for comparison with published tables
 //   (about 7 % larger for a box of equal sides).
 
+#include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 
@@ -53,26 +62,8 @@ namespace internal {
 
 typedef CGAL::Surface_mesh<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3> Triangle_surface;
 
-/// Distances between two surfaces (absolute values, in model units).
-struct Surface_distance
-{
-  double mesh_to_reference = 0.;  ///< one-sided: max over the mesh of the distance to the reference
-  double reference_to_mesh = 0.;  ///< one-sided: max over the reference of the distance to the mesh
-  double reference_diagonal = 0.; ///< bounding-box diagonal of the reference
-  double metro_diagonal = 0.;     ///< metro's normaliser: union box, enlarged by 2 % of its diagonal per side
-
-  double hausdorff() const { return (std::max)(mesh_to_reference, reference_to_mesh); }
-  /// Hausdorff / reference diagonal (the package's surface error)
-  double relative() const
-  {
-    return reference_diagonal > 0. ? hausdorff() / reference_diagonal : hausdorff();
-  }
-  /// Hausdorff / metro's diagonal, to compare with figures computed by metro
-  double metro_relative() const
-  {
-    return metro_diagonal > 0. ? hausdorff() / metro_diagonal : hausdorff();
-  }
-};
+/// the distances between two surfaces: the public `CGAL::Hex_mesh_surface_distance`
+typedef CGAL::Hex_mesh_surface_distance Surface_distance;
 
 inline CGAL::Bbox_3 bbox_of(const Triangle_surface& s)
 {

@@ -1,10 +1,18 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
 #ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_UNTANGLING_LOCAL_OPTIMIZER_H
 #define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_INTERNAL_UNTANGLING_LOCAL_OPTIMIZER_H
+
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
 
 // Algorithm 1 of the paper: rounds of local optimisation of the regions
 // around bad elements, with monotone rollback and the ξ / α / β schedule.

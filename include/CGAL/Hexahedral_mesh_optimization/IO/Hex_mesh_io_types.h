@@ -1,14 +1,22 @@
 // Copyright (c) 2026 Hexahedral_mesh_optimization contributors.
+// All rights reserved.
+//
+// This file is part of CGAL (www.cgal.org)
+//
+// $URL$
+// $Id$
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Package: Hexahedral_mesh_optimization
+// Author(s) : Hexahedral_mesh_optimization contributors
 
-#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
-#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
+#ifndef CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
+#define CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
 
-// The two public types of the hex mesh I/O functions. They live here so that
-// the internal readers and writers can use them; users include
-// <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>.
+#include <CGAL/license/Hexahedral_mesh_optimization.h>
+
+// The public types of the hex mesh I/O functions, in a header of their own
+// so that the internal readers and writers can use them; users include
+// <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>, which includes it.
 
 #include <cstddef>
 #include <string>
@@ -88,4 +96,4 @@ enum class Gmsh_version
 } // namespace IO
 } // namespace CGAL
 
-#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_INTERNAL_HEX_MESH_IO_TYPES_H
+#endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_IO_HEX_MESH_IO_TYPES_H
