@@ -57,6 +57,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Asj_smoothing.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Smoothing/Global_asj_smoothing.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Boundary_restoration.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Final_projection.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Local_optimizer.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_schedule.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_setup.h>
@@ -174,6 +175,7 @@ public:
     if(!stopped()) msj_stages_with_retry(st);
     if(m_s.asj_smoothing && !stopped()) turns(st);
     if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
+    if(m_s.schedule.final_projection && !stopped()) final_projection_stage(st);
 
     for(Vec3& p : mesh.points) p = st.nz.undo(p);
 
@@ -507,6 +509,28 @@ private:
     settings.start_deviation_budget = 0.;
     asj_stage(st, quality_statistics(st.mesh), m_turn_guard * st.tolerance, settings);
     st.current_error = error; // the boundary did not move
+  }
+
+  /// stage "projection": the boundary exactly onto the target surface
+  /// wherever that keeps the MSJ reached (Final_projection.h); undone if the
+  /// surface error grew past the tolerance or the error it had
+  void final_projection_stage(Run_state& st)
+  {
+    const auto t = Clock::now();
+    m_visitor.stage_started("projection", 0);
+    if(st.current_error < 0.) measure_error(st);
+    const std::vector<Vec3> saved = st.mesh.points;
+    const double saved_error = st.current_error;
+    const Quality_statistics q = quality_statistics(st.mesh);
+    const Final_projection_report r =
+      project_boundary_onto_target(*st.topo, *st.ts, st.mesh.points, q.msj, m_s.schedule.final_projection_sweeps);
+    std::ostringstream d;
+    d << r.projected << " boundary vertices moved onto the target surface, " << r.left
+      << " left off it (the move would lower the MSJ; largest distance "
+      << r.largest_left / st.ts->mean_boundary_edge_length() << " mean edge lengths)";
+    report_stage(st, "projection", q, t, 1, d.str());
+    st.error_bound = (std::max)(m_s.surface_tolerance, saved_error);
+    if(r.projected > 0) within_bound(st, saved, saved_error, "the projection", false);
   }
 
   /// The interior vertices all at once (Global_asj_smoothing.h), never below

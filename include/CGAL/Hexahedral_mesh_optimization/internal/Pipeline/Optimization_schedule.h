@@ -55,6 +55,11 @@ struct Optimization_schedule
   bool surface_fitting = true;
   /// quality: the max-min smoothing in each MSJ stage
   bool msj_stage_max_min = true;
+  /// quality: the boundary exactly onto the target surface at the end,
+  /// vertex by vertex, where that keeps the MSJ (Final_projection.h)
+  bool final_projection = true;
+  /// sweeps of that projection over the boundary (a move can make room for the next)
+  int final_projection_sweeps = 3;
 
   // ---- untangling (Hex_mesh_untangler.h)
 
@@ -255,6 +260,7 @@ struct Optimization_schedule
     s.restoration = false;
     s.surface_fitting = false;
     s.msj_stage_max_min = false;
+    s.final_projection = false;
     s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
     s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();
     s.msj_stage_edge_angle_passes = paper_msj_stage_edge_angle_passes;
