@@ -1543,9 +1543,11 @@ std::vector<std::pair<std::string, Mesh> > matrix_meshes()
 /// format W and read back: the same points, hexahedra and groups as far as
 /// W holds them (expected_after), and a warning from
 /// check_hex_mesh_output() exactly when W does not hold all of them.
-/// Prints the counts. With `keep_dir`, the files W stay there, with
-/// matrix.json (each file, its mesh, and for the generated meshes what it
-/// holds) for test_foreign_readers.py; the files R are in the same folder.
+/// Prints the counts. With `manifest` (matrix.json in `dir`), the files
+/// stay in `dir`, listed in it (each file, its mesh, reader and writer, and
+/// what it holds: everything for the generated meshes, the references for
+/// the shared ones), with each mesh as NAME.json, for
+/// test_foreign_readers.py.
 void conversion_matrix(const std::string& dir, std::ostream* manifest)
 {
   const std::vector<Matrix_format> formats = matrix_formats();
@@ -1577,6 +1579,11 @@ void conversion_matrix(const std::string& dir, std::ostream* manifest)
   {
     const std::string& name = meshes[k].first;
     const Mesh source = normalized(meshes[k].second);
+    if(manifest != nullptr)
+    {
+      std::ofstream out(dir + "/" + name + ".json");
+      dump_json(out, source, {});
+    }
     for(const Matrix_format& r : formats)
     {
       Hex_mesh_io_error err;
@@ -1652,6 +1659,13 @@ void conversion_matrix(const std::string& dir, std::ostream* manifest)
             std::ostringstream s;
             dump_json(s, back, {});
             *manifest << ", \"holds\": " << s.str();
+          }
+          else
+          {
+            *manifest << ", \"references\": [";
+            for(std::size_t h = 0; h < back.hexahedron_references.size(); ++h)
+              *manifest << (h ? "," : "") << back.hexahedron_references[h];
+            *manifest << "]";
           }
           *manifest << "}";
         }
