@@ -110,8 +110,25 @@ def _quality_json(q):
 
 
 def main(argv=None):
-    args = _parser().parse_args(argv)
+    parser = _parser()
+    args = parser.parse_args(argv)
     err = sys.stderr
+    options = {}
+    for _, key, _, _ in _VALUE_OPTIONS:
+        value = getattr(args, key)
+        if value is not None:
+            options[key] = value
+    for flag, key, value, _ in _SWITCHES:
+        if getattr(args, flag[2:].replace("-", "_")):
+            options[key] = value
+    if args.method:
+        options["method"] = args.method
+    function = optimize
+    if args.untangle:
+        function = untangle
+        ignored = sorted(k for k in options if k not in _UNTANGLE_KEYWORDS)
+        if ignored:  # a bad command line: exit status 2, before anything is read
+            parser.error("--untangle does not take the options of the quality stages (%s)" % ", ".join(ignored))
 
     def fail(message):
         err.write("error: %s\n" % message)
@@ -133,23 +150,6 @@ def main(argv=None):
             _hmo._check_output_file(args.report)
     except (OSError, ValueError) as e:
         return fail(e)
-
-    options = {}
-    for _, key, _, _ in _VALUE_OPTIONS:
-        value = getattr(args, key)
-        if value is not None:
-            options[key] = value
-    for flag, key, value, _ in _SWITCHES:
-        if getattr(args, flag[2:].replace("-", "_")):
-            options[key] = value
-    if args.method:
-        options["method"] = args.method
-    function = optimize
-    if args.untangle:
-        function = untangle
-        ignored = sorted(k for k in options if k not in _UNTANGLE_KEYWORDS)
-        if ignored:
-            return fail("--untangle does not take the options of the quality stages (%s)" % ", ".join(ignored))
 
     points, hexes = mesh.points, mesh.hexes
     before = quality(points, hexes)
