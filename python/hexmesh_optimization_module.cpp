@@ -213,6 +213,92 @@ void write_mesh(const py::object& path, const py::array& points, const py::array
     raise(PyExc_OSError, error.what()); // the mesh and the format were checked: the file system refused
 }
 
+// ------------------------------------------------------- a mesh with its groups
+
+/// A mesh read from a file with everything the file held (references,
+/// names, sets, ids, MEDIT sections): the command line
+/// (`python -m hexmesh_optimization`) optimises its points and writes it
+/// with its groups, as hexmesh-optimize does. Not a public API.
+struct Mesh_file
+{
+  Mesh mesh;
+  std::vector<std::string> warnings; // the reader's
+};
+
+Mesh_file read_mesh_file(const py::object& path)
+{
+  const std::string fname = path_string(path);
+  require_readable(fname, fname + ": cannot open the file");
+  Mesh_file f;
+  CGAL::IO::Hex_mesh_io_error error;
+  if(!CGAL::IO::read_hex_mesh(fname, f.mesh, &error, &f.warnings))
+    raise(PyExc_ValueError, error.what());
+  return f;
+}
+
+/// the format of `path`: `format` when not None, else by the extension; ValueError otherwise
+CGAL::IO::Hex_mesh_file_format output_format(const std::string& fname, const py::object& format)
+{
+  CGAL::IO::Hex_mesh_file_format f;
+  std::string why;
+  if(!format.is_none())
+  {
+    if(!CGAL::IO::parse_hex_mesh_file_format(std::string(py::str(format)), f, &why))
+      raise(PyExc_ValueError, "format: " + why);
+  }
+  else if(!CGAL::IO::hex_mesh_file_format_from_extension(fname, f, &why))
+    raise(PyExc_ValueError, fname + ": " + why);
+  return f;
+}
+
+/// check_hex_mesh_output(): OSError when `path` cannot be written, else the
+/// warnings about the groups the format does not hold
+std::vector<std::string> check_mesh_file_output(const Mesh_file& f, const py::object& path, const py::object& format)
+{
+  const std::string fname = path_string(path);
+  CGAL::IO::Hex_mesh_io_error error;
+  std::vector<std::string> warnings;
+  if(!CGAL::IO::check_hex_mesh_output(output_format(fname, format), fname, f.mesh, &error, &warnings))
+    raise(PyExc_OSError, error.what());
+  return warnings;
+}
+
+/// writes the mesh with `points` (the optimised ones) and its groups
+void write_mesh_file(const Mesh_file& f, const py::object& path, const py::array& points, const py::object& cell_data,
+                     const py::object& format)
+{
+  const std::string fname = path_string(path);
+  const CGAL::IO::Hex_mesh_file_format ff = output_format(fname, format);
+  Mesh mesh = f.mesh;
+  const Mesh moved = mesh_from_arrays(points, hexes_array(f.mesh));
+  if(moved.points.size() != mesh.points.size())
+    raise(PyExc_ValueError, "points: expected " + std::to_string(mesh.points.size()) + " points");
+  mesh.points = moved.points;
+  CGAL::IO::Hex_mesh_fields fields;
+  if(!cell_data.is_none())
+    for(const auto& item : py::cast<py::dict>(cell_data))
+    {
+      const std::string name = py::str(item.first);
+      const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
+      if(!values || values.ndim() != 1 || std::size_t(values.shape(0)) != mesh.hexahedra.size())
+        raise(PyExc_ValueError, "cell_data['" + name + "']: expected one number per hexahedron (" +
+                                  std::to_string(mesh.hexahedra.size()) + ")");
+      fields.cell_scalars.push_back({name, std::vector<double>(values.data(), values.data() + values.shape(0))});
+    }
+  CGAL::IO::Hex_mesh_io_error error;
+  if(!CGAL::IO::write_hex_mesh_as(ff, fname, mesh, fields, &error))
+    raise(PyExc_OSError, error.what());
+}
+
+/// probe_output_file(): OSError when no file can be created at `path`
+void check_output_file(const py::object& path)
+{
+  const std::string fname = path_string(path);
+  std::string why;
+  if(!HMO::internal::io::probe_output_file(fname, why))
+    raise(PyExc_OSError, fname + ": " + why);
+}
+
 // ------------------------------------------------------------------ quality
 
 py::array_t<double> scaled_jacobian(const py::array& points, const py::array& hexes)
@@ -602,6 +688,16 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
         "'msh22-binary', 'inp', 'exo'. cell_data: a dict name -> one number per hexahedron, written as cell\n"
         "fields where the format has them (VTK, VTU, gmsh). The file is replaced atomically: on failure\n"
         "nothing is written. ValueError for a bad mesh, extension or format, OSError otherwise.");
+  // for python -m hexmesh_optimization (__main__.py); not public
+  py::class_<Mesh_file>(m, "_MeshFile")
+    .def_static("read", &read_mesh_file, py::arg("path"))
+    .def_property_readonly("points", [](const Mesh_file& f) { return points_array(f.mesh); })
+    .def_property_readonly("hexes", [](const Mesh_file& f) { return hexes_array(f.mesh); })
+    .def_readonly("warnings", &Mesh_file::warnings)
+    .def("check_output", &check_mesh_file_output, py::arg("path"), py::arg("format") = py::none())
+    .def("write", &write_mesh_file, py::arg("path"), py::arg("points"), py::arg("cell_data") = py::none(),
+         py::arg("format") = py::none());
+  m.def("_check_output_file", &check_output_file, py::arg("path"));
   m.def("scaled_jacobian", &scaled_jacobian, py::arg("points"), py::arg("hexes"),
         "scaled_jacobian(points, hexes) -> float64 array, the Verdict scaled Jacobian of each hexahedron\n"
         "(minimum over its 8 corners and its centre; negative: inverted).");

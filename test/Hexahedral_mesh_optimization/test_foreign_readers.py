@@ -8,7 +8,9 @@
 #      hexahedra and the groups meshio exposes;
 #  (b) we read what meshio writes in each of these formats, with the same
 #      points, hexahedra and the groups meshio writes;
-#  (c) gmsh opens our .msh files (and we read what gmsh writes back).
+#  (c) gmsh opens our .msh files (and we read what gmsh writes back);
+#  (d) meshio (gmsh for .msh) reads every file of the conversion matrix of
+#      test_hex_mesh_io (--write-matrix DIR): each reader x each writer.
 # usage: test_foreign_readers.py PROBE... WORKDIR
 #   PROBE...: the command of the test program test_hex_mesh_io (hmo_tests
 #   test_hex_mesh_io), whose --write-samples DIR writes our files and
@@ -247,11 +249,117 @@ if gmsh:
         subprocess.run([gmsh, "--version"], capture_output=True, text=True).stderr.strip() or "?",
         len(opened), ", ".join(opened), len(meshed), ", ".join(meshed))
 
+# ------------------------------------------------------------ (d) the conversion matrix
+# every file of test_hex_mesh_io's conversion matrix (each reader x each
+# writer, on its generated meshes and on the shared ones present): meshio
+# reads it (gmsh the .msh files) with the same points and hexahedra, and for
+# the generated meshes the groups meshio exposes (MEDIT references, Abaqus
+# sets, Exodus node sets; gmsh's physical tags)
+matrix_dir = os.path.join(work, "matrix")
+os.makedirs(matrix_dir)
+r = subprocess.run(probe + ["--write-matrix", matrix_dir], capture_output=True, text=True)
+print(r.stdout.strip())
+matrix_result = "conversion matrix: not run"
+if check(r.returncode == 0, "the conversion matrix failed: %s" % (r.stdout + r.stderr)[-2000:]):
+    with open(os.path.join(matrix_dir, "matrix.json")) as f:
+        entries = json.load(f)
+    sources = {}
+    for entry in entries:
+        if entry["mesh"] not in sources:
+            with open(os.path.join(matrix_dir, entry["mesh"] + ".json")) as f:
+                src = json.load(f)
+            sources[entry["mesh"]] = (np.array(src["points"]), np.array(src["hexahedra"]))
+    counts = {"meshio": 0, "gmsh": 0, "groups": 0, "passed": 0}
+
+    def corners(p, h):
+        """the hexahedra by the coordinates of their corners (gmsh may renumber the nodes)"""
+        return np.array(sorted(tuple(x) for x in p[h].reshape(-1, 8 * 3)))
+
+    # meshio reads the files of the other formats
+    msh_entries = []
+    for entry in entries:
+        name = os.path.basename(entry["file"])
+        if name.endswith(".msh"):
+            msh_entries.append(entry)
+            continue
+        points, hexes = sources[entry["mesh"]]
+        holds = entry.get("holds")
+        try:
+            m = meshio.read(entry["file"])
+        except BaseException as ex:  # meshio raises many kinds
+            check(False, "meshio cannot read %s: %s" % (name, ex))
+            continue
+        got = hexahedra(m)
+        ok = check(np.array_equal(m.points, points), "%s: meshio reads other points" % name)
+        if "exo" in (entry["reader"], entry["writer"]):  # Exodus: block by block, compared as sets of rows
+            ok = check(sorted(map(tuple, got.tolist())) == sorted(map(tuple, hexes.tolist())),
+                       "%s: meshio reads other hexahedra" % name) and ok
+        else:
+            ok = check(np.array_equal(got, hexes), "%s: meshio reads other hexahedra" % name) and ok
+        counts["meshio"] += 1
+        if holds is not None and name.endswith(".mesh"):
+            ref = cell_values(m, "medit:ref")
+            ok = check(ref is not None and ref.tolist() == holds["references"],
+                       "%s: meshio reads references %s, expected %s" % (name, ref, holds["references"])) and ok
+            counts["groups"] += 1
+        if holds is not None and (name.endswith(".inp") or name.endswith(".exo")):
+            point_sets = {k: sorted(v.tolist()) for k, v in m.point_sets.items()}
+            ok = check(point_sets == {k: sorted(v) for k, v in holds["vertex_sets"].items()},
+                       "%s: meshio reads node sets %s" % (name, point_sets)) and ok
+            if name.endswith(".inp"):
+                cell_sets = {k: sorted(np.concatenate(v).tolist()) for k, v in m.cell_sets.items()}
+                ok = check(cell_sets == {k: sorted(v) for k, v in holds["hexahedron_sets"].items()},
+                           "%s: meshio reads element sets %s" % (name, cell_sets)) and ok
+            counts["groups"] += 1
+        counts["passed"] += 1 if ok else 0
+
+    # gmsh reads the .msh files, in one run (a script merging and saving
+    # each as 2.2 ASCII, which meshio then reads): it keeps the hexahedra of
+    # the physical volumes, those of a positive reference (all when there is
+    # none), with their physical tags
+    if gmsh and msh_entries:
+        script = os.path.join(matrix_dir, "gmsh_reads.geo")
+        with open(script, "w") as f:
+            f.write("Mesh.Format = 1;\nMesh.MshFileVersion = 2.2;\n")
+            for i, entry in enumerate(msh_entries):
+                f.write('Merge "%s";\nSave "%s";\nDelete Model;\n' % (entry["file"], os.path.join(matrix_dir, "gmsh_%d.msh" % i)))
+        g = subprocess.run([gmsh, script, "-0"], capture_output=True, text=True)
+        errors = [l for l in (g.stdout + g.stderr).splitlines() if l.startswith("Error")]
+        check(g.returncode == 0 and not errors, "gmsh on the matrix's .msh files: exit %d, %s" % (g.returncode, errors[:5]))
+        for i, entry in enumerate(msh_entries):
+            name = os.path.basename(entry["file"])
+            points, hexes = sources[entry["mesh"]]
+            references = np.array(entry["holds"]["references"] if "holds" in entry else entry["references"])
+            kept = references > 0 if (references > 0).any() else np.ones(len(hexes), dtype=bool)
+            try:
+                m = meshio.read(os.path.join(matrix_dir, "gmsh_%d.msh" % i), file_format="gmsh")
+            except BaseException as ex:
+                check(False, "gmsh did not rewrite %s: %s" % (name, ex))
+                continue
+            got = hexahedra(m)
+            ok = check(len(got) == kept.sum() and np.allclose(corners(m.points, got), corners(points, hexes[kept]),
+                                                             rtol=1e-15, atol=1e-16),
+                       "gmsh reads other hexahedra in %s" % name)
+            if (references > 0).any():
+                physical = cell_values(m, "gmsh:physical")
+                ok = check(physical is not None and sorted(physical.tolist()) == sorted(references[kept].tolist()),
+                           "%s: gmsh reads physical tags %s" % (name, physical)) and ok
+                counts["groups"] += 1
+            counts["gmsh"] += 1
+            counts["passed"] += 1 if ok else 0
+    matrix_result = ("conversion matrix: %d files (%d meshes), %d pass: %d read by meshio, %d by gmsh (.msh), "
+                     "%d with their groups compared" % (len(entries), len(sources), counts["passed"],
+                                                        counts["meshio"], counts["gmsh"], counts["groups"]))
+    if not gmsh:
+        matrix_result += "; %d .msh files not checked: gmsh is not installed" % len(msh_entries)
+
 print("\n%-22s %-16s %-38s %s" % ("file", "meshio reads", "we read", "groups kept"))
 for row in rows:
     print("%-22s %-16s %-38s %s" % row)
 print("\n" + gmsh_result)
+print(matrix_result)
 if failures:
     print("\n%d checks failed" % len(failures))
     sys.exit(1)
+shutil.rmtree(os.path.join(work, "matrix"), ignore_errors=True)  # 900 files, about 75 MB
 print("all checks passed")

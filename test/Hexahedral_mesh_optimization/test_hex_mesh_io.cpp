@@ -15,6 +15,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/validate_hex_mesh.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -1083,6 +1084,7 @@ void test_simulation_round_trips()
     // 48: refused after the work) is block 1, silently, with its name
     const CGAL::IO::Hex_mesh_file_format exodus = CGAL::IO::Hex_mesh_file_format::exodus;
     Mesh zero = e;
+    zero.hexahedron_sets.clear(); // Exodus II has no element sets: they would be warned about
     zero.hexahedron_references.assign(zero.hexahedra.size(), 0);
     zero.hexahedron_reference_names = {{0, "solid"}};
     std::vector<std::string> check_warnings;
@@ -1097,6 +1099,7 @@ void test_simulation_round_trips()
     // next free id, 3), names following them, a warning for -3 only; the
     // references in block order, so that the hexahedra keep theirs
     Mesh mixed = e;
+    mixed.hexahedron_sets.clear();
     mixed.hexahedron_references = {0, 0, 0, 2, 2, 2, -3, -3};
     mixed.hexahedron_reference_names = {{0, "zero"}, {2, "two"}, {-3, "minus three"}};
     check_warnings.clear();
@@ -1119,18 +1122,40 @@ void test_simulation_round_trips()
     HMO_CHECK(CGAL::IO::write_EXODUS(path("mixed.exo"), mixed, &err));
     HMO_CHECK(CGAL::IO::read_hex_mesh(path("mixed.exo"), r, &err));
     HMO_CHECK(r.hexahedron_references == std::vector<int>({1, 1, 2, 2, 3, 3, 4, 4}));
-    // the other formats take any reference: nothing to warn about
+    // MEDIT takes any reference: no warning about them (but about the sets
+    // and ids it has no place for)
     check_warnings.clear();
     HMO_CHECK(CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::medit, path("mixed.mesh"), mixed, &err,
                                               &check_warnings));
-    HMO_CHECK(check_warnings.empty());
-    // ids that do not fit the 32 bits of the writer: refused by the check, before any work
+    HMO_CHECK(check_warnings.size() == 4 &&
+              std::none_of(check_warnings.begin(), check_warnings.end(),
+                           [](const std::string& w) { return contains(w, "reference"); }));
+    // ids that do not fit the 32 bits of the writer (issue 48: refused):
+    // written 1..n, with a warning from the check, before any work
     Mesh big_ids = e;
+    big_ids.hexahedron_sets.clear();
     big_ids.point_ids[3] = 1LL << 40;
-    HMO_CHECK(!CGAL::IO::check_hex_mesh_output(exodus, path("big_ids.exo"), big_ids, &err));
-    HMO_CHECK(err.file == path("big_ids.exo") && contains(err.message, "does not fit the 32-bit ids"));
-    HMO_CHECK(CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::inp, path("big_ids.inp"), big_ids, &err));
-    HMO_CHECK(!hmo_test::file_exists(path("big_ids.exo")) && !hmo_test::file_exists(path("big_ids.inp")));
+    check_warnings.clear();
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(exodus, path("big_ids.exo"), big_ids, &err, &check_warnings));
+    HMO_CHECK(check_warnings.size() == 1 &&
+              check_warnings[0] == "the node ids are not kept: Exodus II needs them unique, positive and below 2^31, "
+                                   "they are written as 1..27");
+    HMO_CHECK(!hmo_test::file_exists(path("big_ids.exo")));
+    HMO_CHECK(CGAL::IO::write_hex_mesh(path("big_ids.exo"), big_ids, fields, &err));
+    HMO_CHECK(CGAL::IO::read_hex_mesh(path("big_ids.exo"), r, &err));
+    std::vector<long long> one_to_n;
+    for(long long i = 1; i <= 27; ++i)
+      one_to_n.push_back(i);
+    HMO_CHECK(same_volume(big_ids, r) && r.point_ids == one_to_n && r.hexahedron_ids == big_ids.hexahedron_ids);
+    check_warnings.clear();
+    HMO_CHECK(CGAL::IO::check_hex_mesh_output(CGAL::IO::Hex_mesh_file_format::inp, path("big_ids.inp"), big_ids, &err,
+                                              &check_warnings));
+    // (Abaqus keeps 64-bit ids; its warnings are about the references and their names, which it has no place for)
+    HMO_CHECK(check_warnings.size() == 2 && contains(check_warnings[0], "3 hexahedron references (1, 2, 7) are not written") &&
+              contains(check_warnings[1], "the names of hexahedron references 1, 2 are not written") &&
+              !hmo_test::file_exists(path("big_ids.inp")));
+    // the Exodus writer's temporary file (".big_ids.exo.XXXXXX") is gone
+    HMO_CHECK(files_containing(".big_ids.exo.") == 0);
     // netCDF reads a file cut short as zeros, without an error: the reader
     // checks the size against the variables and the indices against 0
     const std::string exo = read_text(path("grid.exo"));
@@ -1304,6 +1329,364 @@ void test_inp_errors()
                            {"element 1 (line 11): vertex", "repeated"}, 11);
 }
 
+// ----------------------------------------------------------------- conversion matrix
+
+/// a format of the conversion matrix: the name of write_hex_mesh_as(), the extension
+struct Matrix_format
+{
+  const char* name;
+  CGAL::IO::Hex_mesh_file_format format;
+  const char* extension;
+};
+
+std::vector<Matrix_format> matrix_formats()
+{
+  using F = CGAL::IO::Hex_mesh_file_format;
+  std::vector<Matrix_format> f = {{"mesh", F::medit, ".mesh"},         {"vtk", F::vtk, ".vtk"},
+                                  {"vtk-binary", F::vtk_binary, ".vtk"}, {"vtu", F::vtu, ".vtu"},
+                                  {"msh22", F::msh22, ".msh"},         {"msh22-binary", F::msh22_binary, ".msh"},
+                                  {"msh41", F::msh41, ".msh"},         {"msh41-binary", F::msh41_binary, ".msh"},
+                                  {"inp", F::inp, ".inp"}};
+#ifdef CGAL_HMO_HAVE_EXODUS
+  f.push_back({"exo", F::exodus, ".exo"});
+#endif
+  return f;
+}
+
+/// the mesh with its groups in one form: references as long as the
+/// hexahedra (0 when none), ids as long as their arrays (1..n when none),
+/// all-zero vertex references dropped, names of references no hexahedron
+/// has dropped, the Abaqus element type dropped
+Mesh normalized(Mesh m)
+{
+  if(m.hexahedron_references.empty())
+    m.hexahedron_references.assign(m.hexahedra.size(), 0);
+  const auto numbered = [](std::vector<long long>& ids, std::size_t n) {
+    if(ids.empty())
+      for(std::size_t i = 0; i < n; ++i)
+        ids.push_back(static_cast<long long>(i + 1));
+  };
+  numbered(m.point_ids, m.points.size());
+  numbered(m.hexahedron_ids, m.hexahedra.size());
+  if(std::all_of(m.point_references.begin(), m.point_references.end(), [](int r) { return r == 0; }))
+    m.point_references.clear();
+  for(auto it = m.hexahedron_reference_names.begin(); it != m.hexahedron_reference_names.end();)
+    if(std::find(m.hexahedron_references.begin(), m.hexahedron_references.end(), it->first) ==
+       m.hexahedron_references.end())
+      it = m.hexahedron_reference_names.erase(it);
+    else
+      ++it;
+  m.abaqus_element_type.clear();
+  return m;
+}
+
+/// ids 1..n unless `ids` are unique and positive (and below 2^31 when `int32`)
+std::vector<long long> expected_ids(const std::vector<long long>& ids, bool int32)
+{
+  std::vector<long long> sorted(ids);
+  std::sort(sorted.begin(), sorted.end());
+  if(!sorted.empty() && sorted.front() > 0 && std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() &&
+     (!int32 || sorted.back() <= std::numeric_limits<int>::max()))
+    return ids;
+  std::vector<long long> n(ids.size());
+  for(std::size_t i = 0; i < n.size(); ++i)
+    n[i] = static_cast<long long>(i + 1);
+  return n;
+}
+
+/// what a file of `format` written from `m` (normalized) holds, by the
+/// manual's table of each format's groups (written here again, not taken
+/// from the writers)
+Mesh expected_after(CGAL::IO::Hex_mesh_file_format format, const Mesh& m)
+{
+  using F = CGAL::IO::Hex_mesh_file_format;
+  Mesh e = m;
+  const std::size_t n = m.hexahedra.size();
+  const bool medit = format == F::medit, inp = format == F::inp, exodus = format == F::exodus,
+             msh = format == F::msh22 || format == F::msh22_binary || format == F::msh41 || format == F::msh41_binary;
+  if(!medit)
+  {
+    e.point_references.clear();
+    e.quadrilaterals.clear();
+    e.quadrilateral_references.clear();
+    e.triangles.clear();
+    e.triangle_references.clear();
+    e.edges.clear();
+    e.edge_references.clear();
+    e.corners.clear();
+    e.ridges.clear();
+  }
+  if(!inp && !exodus)
+  {
+    e.vertex_sets.clear();
+    e.side_sets.clear();
+  }
+  if(!inp)
+    e.hexahedron_sets.clear();
+  if(medit || (!msh && !inp && !exodus)) // MEDIT, VTK, VTU: no ids
+  {
+    e.point_ids.clear();
+    e.hexahedron_ids.clear();
+  }
+  else
+  {
+    e.point_ids = expected_ids(m.point_ids, !inp);
+    e.hexahedron_ids = expected_ids(m.hexahedron_ids, !inp);
+  }
+  if(msh)
+    for(int& r : e.hexahedron_references)
+      r = std::max(r, 0);
+  else if(!medit && !exodus)
+    e.hexahedron_references.assign(n, 0);
+  if(!msh && !exodus)
+    e.hexahedron_reference_names.clear();
+  if(msh) // gmsh names physical tags, which are positive
+    for(auto it = e.hexahedron_reference_names.begin(); it != e.hexahedron_reference_names.end();)
+      it = it->first > 0 ? std::next(it) : e.hexahedron_reference_names.erase(it);
+  if(exodus)
+  {
+    // block ids: a positive reference is its own, the others (0, -1, ...)
+    // take the smallest positive ids no reference uses
+    std::map<int, int> block;
+    for(int r : m.hexahedron_references)
+      block[r] = r;
+    int next = 1;
+    for(auto it = block.rbegin(); it != block.rend(); ++it)
+      if(it->first <= 0)
+      {
+        while(block.count(next) != 0)
+          ++next;
+        it->second = next++;
+      }
+    // the hexahedra block by block
+    std::vector<std::size_t> order(n), position(n);
+    for(std::size_t h = 0; h < n; ++h)
+      order[h] = h;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return block[m.hexahedron_references[a]] < block[m.hexahedron_references[b]];
+    });
+    e.hexahedra.clear();
+    e.hexahedron_references.clear();
+    e.hexahedron_ids.clear();
+    const std::vector<long long> ids = expected_ids(m.hexahedron_ids, true);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      position[order[i]] = i;
+      e.hexahedra.push_back(m.hexahedra[order[i]]);
+      e.hexahedron_references.push_back(block[m.hexahedron_references[order[i]]]);
+      e.hexahedron_ids.push_back(ids[order[i]]);
+    }
+    e.hexahedron_reference_names.clear();
+    for(const auto& name : m.hexahedron_reference_names)
+      e.hexahedron_reference_names[block[name.first]] = name.second;
+    for(CGAL::Named_side_set& s : e.side_sets)
+      for(auto& side : s.sides)
+        side.first = position[side.first];
+  }
+  return normalized(e);
+}
+
+/// the first difference between `a` and `b` (normalized), "" when none
+std::string difference(const Mesh& a, const Mesh& b)
+{
+  if(!same_points(a, b))
+    return "points";
+  if(a.hexahedra != b.hexahedra)
+    return "hexahedra";
+  if(a.hexahedron_references != b.hexahedron_references)
+    return "hexahedron references";
+  if(a.hexahedron_reference_names != b.hexahedron_reference_names)
+    return "reference names";
+  if(!same_sets(a.vertex_sets, b.vertex_sets))
+    return "node sets";
+  if(!same_sets(a.hexahedron_sets, b.hexahedron_sets))
+    return "element sets";
+  if(!same_side_sets(a.side_sets, b.side_sets))
+    return "side sets";
+  if(a.point_ids != b.point_ids || a.hexahedron_ids != b.hexahedron_ids)
+    return "ids";
+  if(a.point_references != b.point_references || a.quadrilaterals != b.quadrilaterals ||
+     a.quadrilateral_references != b.quadrilateral_references || a.triangles != b.triangles ||
+     a.triangle_references != b.triangle_references || a.edges != b.edges || a.edge_references != b.edge_references ||
+     a.corners != b.corners || a.ridges != b.ridges)
+    return "MEDIT sections";
+  return "";
+}
+
+/// the generated meshes of the matrix, by name
+std::vector<std::pair<std::string, Mesh> > matrix_meshes()
+{
+  std::vector<std::pair<std::string, Mesh> > meshes;
+  meshes.push_back({"no_groups", grid_mesh(false)});
+  Mesh zero = grid_mesh(false);
+  zero.hexahedron_references.assign(zero.hexahedra.size(), 0);
+  meshes.push_back({"reference_0", zero});
+  Mesh several = grid_mesh(false);
+  several.hexahedron_references = {3, 1, 3, 2, 2, 1, 3, 1};
+  several.hexahedron_reference_names = {{1, "steel"}, {3, "rubber core"}};
+  meshes.push_back({"several_references", several});
+  Mesh odd = grid_mesh(false); // negative and large references and ids
+  odd.hexahedron_references = {-4, 0, 2147483647, -4, 1, 0, -1, 1};
+  odd.hexahedron_reference_names = {{-4, "minus four"}, {2147483647, "largest"}, {1, "one"}};
+  for(std::size_t i = 0; i < odd.points.size(); ++i)
+    odd.point_ids.push_back(i == 5 ? -7 : static_cast<long long>(i) + 1); // one negative: renumbered
+  for(std::size_t h = 0; h < odd.hexahedra.size(); ++h)
+    odd.hexahedron_ids.push_back(5000000000LL + 10 * static_cast<long long>(h)); // above 2^31
+  meshes.push_back({"negative_large_ids", odd});
+  meshes.push_back({"named_sets", simulation_mesh(false)});
+  meshes.push_back({"medit_sections", grid_mesh(true)});
+  return meshes;
+}
+
+/// Every reader x every writer: each mesh is written in each format R and
+/// read back (what R holds of it), then what was read is written in each
+/// format W and read back: the same points, hexahedra and groups as far as
+/// W holds them (expected_after), and a warning from
+/// check_hex_mesh_output() exactly when W does not hold all of them.
+/// Prints the counts. With `manifest` (matrix.json in `dir`), the files
+/// stay in `dir`, listed in it (each file, its mesh, reader and writer, and
+/// what it holds: everything for the generated meshes, the references for
+/// the shared ones), with each mesh as NAME.json, for
+/// test_foreign_readers.py.
+void conversion_matrix(const std::string& dir, std::ostream* manifest)
+{
+  const std::vector<Matrix_format> formats = matrix_formats();
+  std::vector<std::pair<std::string, Mesh> > meshes = matrix_meshes();
+  const std::size_t generated = meshes.size();
+  const char* shared[] = {"low-quality/cat_2.mesh", "edge-cone/block_in.mesh", "inverted/bunny_dualsheet.vtk"};
+  std::size_t shared_missing = 0;
+  for(const char* file : shared)
+  {
+    Mesh m;
+    Hex_mesh_io_error err;
+    if(!CGAL::IO::read_hex_mesh(std::string(HMO_SHARED_DATA_DIR) + "/" + file, m, &err))
+    {
+      ++shared_missing;
+      continue;
+    }
+    std::string name = file;
+    std::replace(name.begin(), name.end(), '/', '_');
+    meshes.push_back({name.substr(0, name.find('.')), m});
+  }
+  if(shared_missing != 0)
+    std::cout << "  conversion matrix: " << shared_missing << " shared meshes skipped (not in " << HMO_SHARED_DATA_DIR
+              << ")" << std::endl;
+  std::size_t pairs = 0, passed = 0, warned = 0;
+  bool first_entry = true;
+  if(manifest != nullptr)
+    *manifest << "[\n";
+  for(std::size_t k = 0; k < meshes.size(); ++k)
+  {
+    const std::string& name = meshes[k].first;
+    const Mesh source = normalized(meshes[k].second);
+    if(manifest != nullptr)
+    {
+      std::ofstream out(dir + "/" + name + ".json");
+      dump_json(out, source, {});
+    }
+    for(const Matrix_format& r : formats)
+    {
+      Hex_mesh_io_error err;
+      const std::string in = dir + "/" + name + "." + r.name + r.extension;
+      Mesh read;
+      std::vector<std::string> warnings;
+      if(!CGAL::IO::write_hex_mesh_as(r.format, in, source, Hex_mesh_fields(), &err) ||
+         !CGAL::IO::read_hex_mesh(in, read, &err, &warnings))
+      {
+        std::cerr << "  conversion matrix: " << name << " as " << r.name << ": " << err.what() << std::endl;
+        HMO_CHECK(false);
+        continue;
+      }
+      read = normalized(read);
+      const std::string d = difference(expected_after(r.format, source), read);
+      if(!d.empty())
+        std::cerr << "  conversion matrix: " << name << " written as " << r.name << " reads back other " << d << std::endl;
+      HMO_CHECK(d.empty());
+      for(const Matrix_format& w : formats)
+      {
+        ++pairs;
+        const std::string out = dir + "/" + name + "." + r.name + "-to-" + w.name + w.extension;
+        std::vector<std::string> lost;
+        Mesh back;
+        std::vector<std::string> back_warnings;
+        const bool checked = CGAL::IO::check_hex_mesh_output(w.format, out, read, &err, &lost);
+        const bool ok = checked && CGAL::IO::write_hex_mesh_as(w.format, out, read, Hex_mesh_fields(), &err) &&
+                        CGAL::IO::read_hex_mesh(out, back, &err, &back_warnings);
+        if(!ok)
+        {
+          std::cerr << "  conversion matrix: " << name << " " << r.name << " -> " << w.name << ": " << err.what()
+                    << std::endl;
+          HMO_CHECK(false);
+          continue;
+        }
+        back = normalized(back);
+        const Mesh expected = expected_after(w.format, read);
+        const std::string diff = difference(expected, back);
+        // a warning exactly when the file does not hold everything
+        // (but for reference 0 written as Exodus block 1 when 1 is free, said in the manual)
+        Mesh as_read = read;
+        if(w.format == CGAL::IO::Hex_mesh_file_format::exodus &&
+           std::count(read.hexahedron_references.begin(), read.hexahedron_references.end(), 1) == 0)
+        {
+          std::replace(as_read.hexahedron_references.begin(), as_read.hexahedron_references.end(), 0, 1);
+          if(as_read.hexahedron_reference_names.count(0) != 0)
+          {
+            as_read.hexahedron_reference_names[1] = as_read.hexahedron_reference_names[0];
+            as_read.hexahedron_reference_names.erase(0);
+          }
+        }
+        const bool holds_all = difference(expected, as_read).empty();
+        const bool warned_right = holds_all == lost.empty();
+        if(!diff.empty() || !warned_right)
+        {
+          std::cerr << "  conversion matrix: " << name << " " << r.name << " -> " << w.name << ": "
+                    << (diff.empty() ? "" : "reads back other " + diff + "; ")
+                    << (warned_right ? "" : holds_all ? "warns without loss: " : "loses '" + difference(expected, as_read) +
+                                                                                   "' without a warning")
+                    << (lost.empty() ? "" : lost[0]) << std::endl;
+          HMO_CHECK(false);
+          continue;
+        }
+        ++passed;
+        warned += lost.empty() ? 0 : 1;
+        if(manifest != nullptr)
+        {
+          *manifest << (first_entry ? "" : ",\n") << "{\"file\": \"" << out << "\", \"mesh\": \"" << name
+                    << "\", \"reader\": \"" << r.name << "\", \"writer\": \"" << w.name << "\"";
+          first_entry = false;
+          if(k < generated)
+          {
+            std::ostringstream s;
+            dump_json(s, back, {});
+            *manifest << ", \"holds\": " << s.str();
+          }
+          else
+          {
+            *manifest << ", \"references\": [";
+            for(std::size_t h = 0; h < back.hexahedron_references.size(); ++h)
+              *manifest << (h ? "," : "") << back.hexahedron_references[h];
+            *manifest << "]";
+          }
+          *manifest << "}";
+        }
+        else
+          std::remove(out.c_str());
+      }
+      if(manifest == nullptr)
+        std::remove(in.c_str());
+    }
+  }
+  if(manifest != nullptr)
+    *manifest << "\n]\n";
+  std::cout << "  conversion matrix: " << formats.size() << " readers x " << formats.size() << " writers x "
+            << meshes.size() << " meshes (" << generated << " generated, " << meshes.size() - generated
+            << " shared) = " << pairs << " conversions, " << passed << " passed (" << warned
+            << " with a warning that the target holds fewer groups)" << std::endl;
+  HMO_CHECK(pairs == formats.size() * formats.size() * meshes.size() && passed == pairs);
+}
+
+void test_conversion_matrix() { conversion_matrix(g_dir, nullptr); }
+
 /// `--write-samples DIR`: the simulation meshes in every format we write, and
 /// what they hold (expected.json, expected_exodus.json); `--dump FILE`: the
 /// mesh read from FILE as JSON. Both for test_foreign_readers.py (meshio, gmsh).
@@ -1344,6 +1727,12 @@ int sample_tool(int argc, char** argv)
     dump_json(out_exodus, e, {});
     return 0;
   }
+  if(mode == "--write-matrix" && argc == 3)
+  {
+    std::ofstream manifest(std::string(argv[2]) + "/matrix.json");
+    conversion_matrix(argv[2], &manifest);
+    return hmo_test::report(argv[0]);
+  }
   if(mode == "--dump" && argc == 3)
   {
     Mesh m;
@@ -1357,7 +1746,7 @@ int sample_tool(int argc, char** argv)
     dump_json(std::cout, m, warnings);
     return 0;
   }
-  std::cerr << "usage: test_hex_mesh_io [--write-samples DIR | --dump FILE]" << std::endl;
+  std::cerr << "usage: test_hex_mesh_io [--write-samples DIR | --write-matrix DIR | --dump FILE]" << std::endl;
   return 2;
 }
 
@@ -1387,6 +1776,7 @@ HMO_TEST_MAIN(test_hex_mesh_io)
   HMO_CASE(test_simulation_round_trips());
   HMO_CASE(test_msh_errors());
   HMO_CASE(test_inp_errors());
+  HMO_CASE(test_conversion_matrix());
   HMO_CASE(test_shared_data());
 
   std::error_code ec;

@@ -591,6 +591,12 @@ if(NOT DEFINED EXODUS OR EXODUS STREQUAL "")
     set(EXODUS ON)
   endif()
 endif()
+# a format that cannot hold the groups: a warning before the work (issue 48),
+# the mesh written all the same
+run(vtk_refs ${WORK}/refs.mesh ${WORK}/refs.vtk)
+check("references -> .vtk (rc ${vtk_refs_rc}: ${vtk_refs_err})" vtk_refs_rc EQUAL 0 AND EXISTS ${WORK}/refs.vtk)
+check("a warning naming the file and the references: ${vtk_refs_err}"
+      vtk_refs_err MATCHES "^warning: [^\n]*refs.vtk: 3 hexahedron references \\(-3, 0, 2\\) are not written: legacy VTK")
 if(EXODUS)
   check("MEDIT with every reference 0 -> .exo (rc ${exo0_rc}: ${exo0_err})" exo0_rc EQUAL 0)
   check("the .exo is written" EXISTS ${WORK}/ref0.exo)

@@ -36,8 +36,11 @@
 #include <CGAL/Hexahedral_mesh_optimization/IO/internal/Exodus_io.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 
+#include <climits>
 #include <exception>
+#include <map>
 #include <new>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -646,14 +649,199 @@ inline bool check_hex_mesh_output(Hex_mesh_file_format format, const std::string
   return true;
 }
 
+namespace internal_groups {
+
+inline const char* format_label(Hex_mesh_file_format format)
+{
+  switch(format)
+  {
+  case Hex_mesh_file_format::medit: return "MEDIT (.mesh)";
+  case Hex_mesh_file_format::vtk:
+  case Hex_mesh_file_format::vtk_binary: return "legacy VTK (.vtk)";
+  case Hex_mesh_file_format::vtu: return "VTK XML (.vtu)";
+  case Hex_mesh_file_format::inp: return "Abaqus (.inp)";
+  case Hex_mesh_file_format::exodus: return "Exodus II";
+  default: return "gmsh (.msh)";
+  }
+}
+
+inline bool is_msh(Hex_mesh_file_format f)
+{
+  return f == Hex_mesh_file_format::msh41 || f == Hex_mesh_file_format::msh41_binary ||
+         f == Hex_mesh_file_format::msh22 || f == Hex_mesh_file_format::msh22_binary;
+}
+
+/// "a, b, c" (at most 5, then "...")
+template <class Range, class Name>
+std::string listed(const Range& r, const Name& name)
+{
+  std::string s;
+  std::size_t n = 0;
+  for(const auto& x : r)
+  {
+    if(n == 5)
+      return s + ", ...";
+    s += (n++ == 0 ? "" : ", ") + name(x);
+  }
+  return s;
+}
+
+/// ids other than 1..n (empty ids are 1..n)
+inline bool numbered_otherwise(const std::vector<long long>& ids)
+{
+  for(std::size_t i = 0; i < ids.size(); ++i)
+    if(ids[i] != static_cast<long long>(i + 1))
+      return true;
+  return false;
+}
+
+/// the ids `format` writes for `kept` (see the writers): empty when it has no ids
+inline std::vector<long long> written_ids(Hex_mesh_file_format format, const std::vector<long long>& kept, std::size_t n)
+{
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  if(format == Hex_mesh_file_format::medit || format == Hex_mesh_file_format::vtk ||
+     format == Hex_mesh_file_format::vtk_binary || format == Hex_mesh_file_format::vtu)
+    return std::vector<long long>();
+  std::vector<long long> ids = io::ids_for_writing(kept, n);
+  if(format != Hex_mesh_file_format::inp)  // gmsh and Exodus: 32-bit ids
+    for(long long i : ids)
+      if(i > INT_MAX)
+        return io::ids_for_writing(std::vector<long long>(), n);
+  return ids;
+}
+
+} // namespace internal_groups
+
 /*!
 \ingroup PkgHexahedralMeshOptimizationIO
 
-\brief The checks of `check_hex_mesh_output(format, fname, err)`, and that
-the groups of `mesh` can be written in `format`: Exodus II ids (the node and
-element number maps) must fit 32 bits. The references that Exodus II cannot
-take as block ids are given others, as `write_EXODUS()` says; each is
-reported in `warnings`, but for reference 0 written as block 1. Only the
+\brief What of the groups of `mesh` a file of `format` cannot hold: one
+message for each kind of group (hexahedron references, their names, named
+node, element and side sets, the MEDIT boundary sections and vertex
+references, node and element ids other than 1..n) that `format` does not
+write or writes otherwise, e.g. "3 named node sets (BOTTOM, corner, top)
+are not written: Abaqus (.inp) keeps them, MEDIT (.mesh) has none". Nothing
+is refused: the writers write what the format holds. The table of the
+manual's Input and Output section says what each format holds.
+
+\param format the format the mesh will be written in
+\param mesh the mesh (only its groups and ids are looked at)
+\return the messages, empty when the file holds every group of `mesh`
+*/
+template <class Point>
+std::vector<std::string> hex_mesh_groups_not_written(Hex_mesh_file_format format, const Indexed_hex_mesh<Point>& mesh)
+{
+  namespace g = internal_groups;
+  namespace io = Hexahedral_mesh_optimization::internal::io;
+  std::vector<std::string> w;
+  const std::string label = g::format_label(format);
+  const bool medit = format == Hex_mesh_file_format::medit, msh = g::is_msh(format),
+             inp = format == Hex_mesh_file_format::inp, exodus = format == Hex_mesh_file_format::exodus;
+  const auto number = [](int i) { return std::to_string(i); };
+  const auto set_name = [](const auto& s) { return s.name; };
+
+  // the hexahedron references and their names
+  std::set<int> references(mesh.hexahedron_references.begin(), mesh.hexahedron_references.end());
+  const bool any_reference = !references.empty() && !(references.size() == 1 && *references.begin() == 0);
+  std::set<int> unnamed_written; // references whose name is written
+  if(exodus)
+  {
+    const std::map<int, int> block_of = io::exodus_block_ids(mesh.hexahedron_references, &w);
+    for(std::size_t h = 1; h < mesh.hexahedron_references.size(); ++h)
+      if(block_of.at(mesh.hexahedron_references[h]) < block_of.at(mesh.hexahedron_references[h - 1]))
+      {
+        w.push_back("the hexahedra are written block by block (Exodus II element blocks): their references are "
+                    "not in increasing order, so they read back in another order");
+        break;
+      }
+  }
+  else if(msh)
+  {
+    std::set<int> negative;
+    for(int r : references)
+      if(r < 0)
+        negative.insert(r);
+    if(!negative.empty())
+      w.push_back("hexahedron references " + g::listed(negative, number) + " are not written: gmsh physical tags "
+                  "are positive, these hexahedra read back with reference 0 (use positive references to keep them)");
+  }
+  else if(!medit && any_reference)
+    w.push_back(std::to_string(references.size()) + " hexahedron references (" + g::listed(references, number) +
+                ") are not written: " + label + " has no per-element group" +
+                (inp ? " (put them in mesh.hexahedron_sets to write them as *ELSET)" : "") +
+                "; Exodus II, gmsh and MEDIT keep them");
+  std::set<int> names_lost;
+  for(const auto& n : mesh.hexahedron_reference_names)
+    if(references.count(n.first) != 0 && !(exodus || (msh && n.first > 0)))
+      names_lost.insert(n.first);
+  if(!names_lost.empty())
+    w.push_back("the names of hexahedron references " + g::listed(names_lost, number) + " are not written: " +
+                (msh ? std::string("gmsh names physical tags, which are positive")
+                     : label + " has no names of groups (Exodus II and gmsh keep them)"));
+
+  // the named sets
+  const auto sets_lost = [&](std::size_t count, const std::string& what, const std::string& names,
+                             const char* kept_by) {
+    if(count != 0)
+      w.push_back(std::to_string(count) + " " + what + " (" + names + ") " + (count == 1 ? "is" : "are") +
+                  " not written: " + label + " has none (" + kept_by + " keep" + (std::string(kept_by).find(" and ") ==
+                  std::string::npos ? "s" : "") + " them)");
+  };
+  if(!inp && !exodus)
+    sets_lost(mesh.vertex_sets.size(), "named node sets", g::listed(mesh.vertex_sets, set_name), "Abaqus and Exodus II");
+  if(!inp)
+    sets_lost(mesh.hexahedron_sets.size(), "named element sets", g::listed(mesh.hexahedron_sets, set_name), "Abaqus");
+  if(!inp && !exodus)
+    sets_lost(mesh.side_sets.size(), "named side sets", g::listed(mesh.side_sets, set_name), "Abaqus and Exodus II");
+
+  // the MEDIT sections
+  if(!medit)
+  {
+    std::vector<std::string> sections;
+    const auto section = [&](std::size_t n, const char* name) {
+      if(n != 0)
+        sections.push_back(std::string(name) + " (" + std::to_string(n) + ")");
+    };
+    bool vertex_references = false;
+    for(int r : mesh.point_references)
+      vertex_references = vertex_references || r != 0;
+    section(vertex_references ? mesh.point_references.size() : 0, "vertex references");
+    section(mesh.quadrilaterals.size(), "Quadrilaterals");
+    section(mesh.triangles.size(), "Triangles");
+    section(mesh.edges.size(), "Edges");
+    section(mesh.corners.size(), "Corners");
+    section(mesh.ridges.size(), "Ridges");
+    if(!sections.empty())
+      w.push_back("the MEDIT " + g::listed(sections, [](const std::string& x) { return x; }) + " are not written: " +
+                  label + " holds the points and hexahedra only of them");
+  }
+
+  // the ids
+  const std::pair<const std::vector<long long>*, std::size_t> ids[] = {{&mesh.point_ids, mesh.points.size()},
+                                                                       {&mesh.hexahedron_ids, mesh.hexahedra.size()}};
+  for(int k = 0; k < 2; ++k)
+  {
+    const std::vector<long long>& kept = *ids[k].first;
+    if(!g::numbered_otherwise(kept))
+      continue;
+    const std::vector<long long> written = g::written_ids(format, kept, ids[k].second);
+    if(written == kept)
+      continue;
+    w.push_back(std::string(k == 0 ? "the node ids" : "the element ids") + " are not kept: " +
+                (written.empty() ? label + " has no ids, the file numbers them from 1"
+                                 : label + " needs them unique, positive" + (inp ? "" : " and below 2^31") +
+                                   ", they are written as 1.." + std::to_string(ids[k].second)));
+  }
+  return w;
+}
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationIO
+
+\brief The checks of `check_hex_mesh_output(format, fname, err)`, and what
+of the groups of `mesh` the file will not hold, as warnings
+(`hex_mesh_groups_not_written()`): a format that cannot hold a group gets a
+warning here, before the work, and the writer writes what it can. Only the
 connectivity and the groups of `mesh` are looked at, which the optimisation
 never changes: call this on the mesh read, before optimising it.
 
@@ -661,23 +849,19 @@ never changes: call this on the mesh read, before optimising it.
 \param fname the file it will be written to
 \param mesh the mesh (its groups and ids)
 \param err if not null, receives the reason of a failure
-\param warnings if not null, receives one message per group written otherwise than it is
+\param warnings if not null, receives one message per kind of group written otherwise than it is
 \return `true` when the checks pass
 */
 template <class Point>
 bool check_hex_mesh_output(Hex_mesh_file_format format, const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
                            Hex_mesh_io_error* err = nullptr, std::vector<std::string>* warnings = nullptr)
 {
-  namespace io = Hexahedral_mesh_optimization::internal::io;
   if(!check_hex_mesh_output(format, fname, err))
     return false;
-  if(format == Hex_mesh_file_format::exodus)
+  if(warnings != nullptr)
   {
-#ifdef CGAL_HMO_HAVE_EXODUS
-    if(!io::check_exodus_writable(fname, mesh, err))
-      return false;
-#endif
-    io::exodus_block_ids(mesh.hexahedron_references, warnings);
+    const std::vector<std::string> w = hex_mesh_groups_not_written(format, mesh);
+    warnings->insert(warnings->end(), w.begin(), w.end());
   }
   return true;
 }

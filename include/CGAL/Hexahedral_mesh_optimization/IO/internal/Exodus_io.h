@@ -39,6 +39,8 @@
 #ifdef CGAL_HMO_HAVE_EXODUS
 #include <exodusII.h>
 #include <netcdf.h>
+#include <stdlib.h>   // mkstemp
+#include <sys/stat.h> // fchmod, umask
 #include <unistd.h>
 #endif
 
@@ -430,17 +432,16 @@ bool read_EXODUS_file(const std::string& fname, Indexed_hex_mesh<Point>& out, co
   });
 }
 
-/// what the Exodus writer cannot write: the ids must fit 32 bits (the
-/// references can all be written: see exodus_block_ids)
-template <class Point>
-bool check_exodus_writable(const std::string& fname, const Indexed_hex_mesh<Point>& mesh,
-                           CGAL::IO::Hex_mesh_io_error* err)
+/// the ids the Exodus writer writes for `kept` (`mesh.point_ids` or
+/// `mesh.hexahedron_ids`): those of ids_for_writing(), but 1..n when one of
+/// them does not fit the 32-bit ids of this writer
+inline std::vector<long long> exodus_ids_for_writing(const std::vector<long long>& kept, std::size_t n)
 {
-  for(const std::vector<long long>* ids : {&mesh.point_ids, &mesh.hexahedron_ids})
-    for(long long i : *ids)
-      if(i > INT_MAX)
-        return write_failure(fname, err, "id " + std::to_string(i) + " does not fit the 32-bit ids of this writer");
-  return true;
+  std::vector<long long> ids = ids_for_writing(kept, n);
+  for(long long i : ids)
+    if(i > INT_MAX)
+      return ids_for_writing(std::vector<long long>(), n);
+  return ids;
 }
 
 /// the hexahedra grouped by block (see exodus_block_ids), in the order of
@@ -471,15 +472,39 @@ Exodus_blocks exodus_blocks(const Indexed_hex_mesh<Point>& mesh)
   return blocks;
 }
 
-/// netCDF writes the file by name: a temporary name in the same folder,
-/// renamed at the end, removed on failure (unless `keep` was set)
+/// netCDF writes the file by name: a temporary file of a unique name in the
+/// folder of the target (".<name>.XXXXXX", created by mkstemp so that no
+/// other file is overwritten), renamed onto the target at the end, removed
+/// on failure (unless `keep` was set)
 struct Exodus_temporary_file
 {
-  const std::string& name;
+  std::string name;
   bool keep = false;
+
+  /// creates the file; false (with `errno`) when it cannot be
+  bool create(const std::string& target)
+  {
+    const std::size_t slash = target.find_last_of('/');
+    const std::string folder = slash == std::string::npos ? std::string() : target.substr(0, slash + 1);
+    const std::string base = slash == std::string::npos ? target : target.substr(slash + 1);
+    std::vector<char> templ;
+    const std::string t = folder + "." + base + ".XXXXXX";
+    templ.assign(t.begin(), t.end());
+    templ.push_back('\0');
+    const int fd = ::mkstemp(templ.data());
+    if(fd < 0)
+      return false;
+    // the permissions of a new file (mkstemp's are 0600)
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask);
+    ::close(fd);
+    name = templ.data();
+    return true;
+  }
   ~Exodus_temporary_file()
   {
-    if(!keep)
+    if(!keep && !name.empty())
       std::remove(name.c_str());
   }
 };
@@ -545,8 +570,8 @@ template <class Point, class Failure>
 bool write_exodus_id_maps(int exo, const Indexed_hex_mesh<Point>& mesh, const Exodus_blocks& blocks,
                           const Failure& failed)
 {
-  const std::vector<long long> node_ids = ids_for_writing(mesh.point_ids, mesh.points.size());
-  const std::vector<long long> hex_ids = ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
+  const std::vector<long long> node_ids = exodus_ids_for_writing(mesh.point_ids, mesh.points.size());
+  const std::vector<long long> hex_ids = exodus_ids_for_writing(mesh.hexahedron_ids, mesh.hexahedra.size());
   std::vector<int> map(node_ids.begin(), node_ids.end());
   if(ex_put_id_map(exo, EX_NODE_MAP, map.data()) < 0)
     return failed("the node map");
@@ -603,15 +628,16 @@ bool write_exodus_side_sets(int exo, const Indexed_hex_mesh<Point>& mesh, const 
 template <class Point>
 bool write_EXODUS_file(const std::string& fname, const Indexed_hex_mesh<Point>& mesh, CGAL::IO::Hex_mesh_io_error* err)
 {
-  if(!check_before_writing(fname, mesh, CGAL::IO::Hex_mesh_fields(), err) || !check_exodus_writable(fname, mesh, err))
+  if(!check_before_writing(fname, mesh, CGAL::IO::Hex_mesh_fields(), err))
     return false;
   const Exodus_blocks blocks = exodus_blocks(mesh);
-  const std::string temp = fname + ".tmp" + std::to_string(::getpid());
-  Exodus_temporary_file cleanup{temp};
+  Exodus_temporary_file temp;
+  if(!temp.create(fname))
+    return write_failure(fname, err, std::string("cannot create a temporary file in its folder: ") + std::strerror(errno));
   ex_opts(0);
   int comp_ws = 8, io_ws = 8;
   Exodus_file f;
-  f.id = ex_create(temp.c_str(), EX_CLOBBER, &comp_ws, &io_ws);
+  f.id = ex_create(temp.name.c_str(), EX_CLOBBER, &comp_ws, &io_ws);
   if(f.id < 0)
     return write_failure(fname, err, "cannot create the file (ex_create)");
   ex_set_max_name_length(f.id, 80);
@@ -625,9 +651,9 @@ bool write_EXODUS_file(const std::string& fname, const Indexed_hex_mesh<Point>& 
   f.id = -1;
   if(ex_close(id) < 0)
     return failed("the file (ex_close)");
-  if(std::rename(temp.c_str(), fname.c_str()) != 0)
+  if(std::rename(temp.name.c_str(), fname.c_str()) != 0)
     return write_failure(fname, err, std::string("cannot rename the temporary file: ") + std::strerror(errno));
-  cleanup.keep = true;
+  temp.keep = true;
   return true;
 }
 
