@@ -19,6 +19,10 @@
 #include <CGAL/improve_hex_mesh_quality.h>
 #include <CGAL/untangle_hex_mesh.h>
 #include <CGAL/property_map.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/generators.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <boost/property_map/property_map.hpp>
 
@@ -225,6 +229,61 @@ void test_vertex_point_map()
   HMO_CHECK(CGAL::hex_mesh_quality(m, CGAL::parameters::vertex_point_map(vpm)).inverted == 0);
 }
 
+/// a reference_vertex_point_map: points by vertex index in a vector
+struct Surface_point_vector
+{
+  typedef CGAL::Surface_mesh<IK::Point_3>::Vertex_index key_type;
+  typedef IK::Point_3 value_type;
+  typedef const IK::Point_3& reference;
+  typedef boost::readable_property_map_tag category;
+  const std::vector<IK::Point_3>* points;
+  friend reference get(const Surface_point_vector& m, key_type v) { return (*m.points)[std::size_t(v)]; }
+};
+
+/// edge_is_constrained_map and reference_vertex_point_map on the reference
+/// surface: a triangulated cube whose one face diagonal (flat: never a
+/// detected crease) is given as a crease, its points given through a map
+/// that moves them by (10, 0, 0)
+void test_reference_maps()
+{
+  namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  typedef CGAL::Surface_mesh<IK::Point_3> Surface;
+  typedef boost::graph_traits<Surface>::edge_descriptor edge_descriptor;
+  Surface cube;
+  CGAL::make_hexahedron(IK::Point_3(0, 0, 0), IK::Point_3(1, 0, 0), IK::Point_3(1, 1, 0), IK::Point_3(0, 1, 0),
+                        IK::Point_3(0, 1, 1), IK::Point_3(0, 0, 1), IK::Point_3(1, 0, 1), IK::Point_3(1, 1, 1), cube);
+  PMP::triangulate_faces(cube);
+  auto given = cube.add_property_map<edge_descriptor, bool>("e:given", false).first;
+  std::size_t flat = 0;
+  for(edge_descriptor e : edges(cube))
+  {
+    const auto h = halfedge(e, cube);
+    const IK::Vector_3 a = PMP::compute_face_normal(face(h, cube), cube);
+    const IK::Vector_3 b = PMP::compute_face_normal(face(opposite(h, cube), cube), cube);
+    if(a * b > 0.999 && flat++ == 0) put(given, e, true); // the first flat edge only
+  }
+  HMO_CHECK(flat == 6);
+  std::vector<IK::Point_3> moved;
+  for(auto v : vertices(cube)) moved.push_back(cube.point(v) + IK::Vector_3(10, 0, 0));
+  const Surface_point_vector reference_points{&moved};
+
+  std::vector<HMOI::Vec3> points, points_given;
+  std::vector<HMOI::Tri> tris, tris_given;
+  std::vector<std::array<std::size_t, 2> > creases, creases_given;
+  HMOI::reference_to_soup(cube, CGAL::parameters::sharp_angle(160.), points, tris, creases);
+  HMOI::reference_to_soup(cube, CGAL::parameters::reference_vertex_point_map(reference_points).edge_is_constrained_map(given),
+                          points_given, tris_given, creases_given);
+  HMO_CHECK(creases.empty() && creases_given.size() == 1);
+  HMO_CHECK(points.size() == 8 && points_given.size() == 8);
+  for(std::size_t i = 0; i < points.size(); ++i) HMO_CHECK(points_given[i][0] == points[i][0] + 10.);
+  const HMOI::Reference_features without = HMOI::detect_reference_features(points, tris, 150., 60., 0., 30.);
+  const HMOI::Reference_features with =
+    HMOI::detect_reference_features(points, tris, 150., 60., 0., 30., creases_given);
+  HMO_CHECK(without.sharp_edges == 12);
+  HMO_CHECK(with.sharp_edges == 13);
+}
+
 HMO_TEST_MAIN(test_cgal_user)
 {
   HMO_CASE(test_exact_lcc());
@@ -232,6 +291,7 @@ HMO_TEST_MAIN(test_cgal_user)
   HMO_CASE(test_custom_items_lcc());
   HMO_CASE(test_all_constrained());
   HMO_CASE(test_vertex_point_map());
+  HMO_CASE(test_reference_maps());
   return hmo_test::report(argv[0]);
 }
 
