@@ -268,7 +268,8 @@ struct Options
     HMO::internal::Untangle_settings u;
     std::vector<HMO::internal::Vec3> rp;
     std::vector<HMO::internal::Tri> rt;
-    HMO::internal::read_untangle_parameters(CGAL::parameters::default_values(), Kernel(), u, rp, rt);
+    std::vector<std::array<std::size_t, 2> > rc;
+    HMO::internal::read_untangle_parameters(CGAL::parameters::default_values(), u, rp, rt, rc);
     HMO::internal::Quality_settings q;
     HMO::internal::read_quality_parameters(CGAL::parameters::default_values(), u, q);
     sharp_angle = u.sharp_angle;
