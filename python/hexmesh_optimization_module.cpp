@@ -354,7 +354,8 @@ struct Options
     HMO::internal::Untangle_settings u;
     std::vector<HMO::internal::Vec3> rp;
     std::vector<HMO::internal::Tri> rt;
-    HMO::internal::read_untangle_parameters(CGAL::parameters::default_values(), Kernel(), u, rp, rt);
+    std::vector<std::array<std::size_t, 2> > rc;
+    HMO::internal::read_untangle_parameters(CGAL::parameters::default_values(), u, rp, rt, rc);
     HMO::internal::Quality_settings q;
     HMO::internal::read_quality_parameters(CGAL::parameters::default_values(), u, q);
     sharp_angle = u.sharp_angle;
@@ -534,6 +535,7 @@ py::dict result_dict(const HMO::Optimization_result& r)
     e["scaled_jacobian"] = u.scaled_jacobian;
     e["reason"] = u.reason == HMO::Unresolved_element::locked             ? "locked"
                   : u.reason == HMO::Unresolved_element::region_exhausted ? "region_exhausted"
+                  : u.reason == HMO::Unresolved_element::constrained      ? "constrained"
                                                                           : "time_limit";
     e["details"] = u.details;
     unresolved.append(e);
@@ -625,28 +627,30 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
   Python_visitor visitor;
   visitor.progress = progress;
   visitor.stop = &stop;
-  namespace HP = CGAL::hex_mesh_parameters;
-  const auto np = HP::sharp_angle(o.sharp_angle,
-                  HP::reference_feature_angle(o.reference_feature_angle,
-                  HP::crease_seed_angle(o.crease_seed_angle,
-                  HP::turn_focus_band(o.turn_focus_band,
-                  HP::alpha(o.alpha,
-                  HP::beta(o.beta,
-                  HP::xi(o.xi,
-                  HP::relax_surface(o.relax_surface,
-                  HP::local_iterations(o.local_iterations,
-                  HP::barrier_fallback(o.barrier_fallback,
-                  HP::target_msj(o.target_msj,
-                  HP::surface_tolerance(o.surface_tolerance,
-                  HP::pull_back(o.pull_back,
-                  HP::asj_smoothing(o.asj_smoothing,
-                  HP::edge_angle_stages(o.edge_angle_stages,
-                  HP::coarse_level_start(o.coarse_level_start,
-                  HP::method(o.method,
-                  HP::time_limit(o.time_limit,
-                  HP::stop_flag(&stop,
-                  CGAL::parameters::number_of_iterations(o.number_of_iterations)
-                                    .visitor(std::ref(visitor)))))))))))))))))))));
+  namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+  namespace INP = CGAL::hex_mesh_internal_np;
+  const auto public_np = CGAL::parameters::sharp_angle(o.sharp_angle)
+                           .reference_feature_angle(o.reference_feature_angle)
+                           .target_msj(o.target_msj)
+                           .surface_tolerance(o.surface_tolerance)
+                           .method(o.method)
+                           .time_limit(o.time_limit)
+                           .stop_flag(&stop)
+                           .number_of_iterations(o.number_of_iterations)
+                           .visitor(std::ref(visitor));
+  // the schedule's settings the binding exposes (not public C++ API)
+  const auto np1 = HMOI::add_internal_parameter(public_np, INP::crease_seed_angle, o.crease_seed_angle);
+  const auto np2 = HMOI::add_internal_parameter(np1, INP::turn_focus_band, o.turn_focus_band);
+  const auto np3 = HMOI::add_internal_parameter(np2, INP::alpha, o.alpha);
+  const auto np4 = HMOI::add_internal_parameter(np3, INP::beta, o.beta);
+  const auto np5 = HMOI::add_internal_parameter(np4, INP::xi, o.xi);
+  const auto np6 = HMOI::add_internal_parameter(np5, INP::relax_surface, o.relax_surface);
+  const auto np7 = HMOI::add_internal_parameter(np6, INP::local_iterations, o.local_iterations);
+  const auto np8 = HMOI::add_internal_parameter(np7, INP::barrier_fallback, o.barrier_fallback);
+  const auto np9 = HMOI::add_internal_parameter(np8, INP::pull_back, o.pull_back);
+  const auto np10 = HMOI::add_internal_parameter(np9, INP::asj_smoothing, o.asj_smoothing);
+  const auto np11 = HMOI::add_internal_parameter(np10, INP::edge_angle_stages, o.edge_angle_stages);
+  const auto np = HMOI::add_internal_parameter(np11, INP::coarse_level_start, o.coarse_level_start);
   HMO::Optimization_result r;
   {
     py::gil_scoped_release no_gil;
@@ -657,7 +661,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
 #endif
     try
     {
-      r = has_reference ? call(f, mesh, HP::reference_surface(surface, np)) : call(f, mesh, np);
+      r = has_reference ? call(f, mesh, HMOI::add_internal_parameter(np, INP::reference_surface, surface)) : call(f, mesh, np);
     }
     catch(const HMO::Reference_mismatch& e)
     {

@@ -181,32 +181,39 @@ CGAL::Hexahedral_mesh_optimization::Optimization_result
 run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options, const Surface* reference,
            double time_limit, bool progress_in_place, std::ostream& log)
 {
-  namespace HP = CGAL::hex_mesh_parameters;
+  namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+  namespace INP = CGAL::hex_mesh_internal_np;
   Progress_visitor visitor;
   if(!options.quiet) visitor.log = &log;
   visitor.in_place = progress_in_place;
   if(!options.quiet)
     log << "\n" << (options.untangle_only ? "untangling" : "optimising") << " (" << mesh.hexahedra.size()
         << " hexahedra)\n";
-  auto np = HP::sharp_angle(options.sharp_angle,
-            HP::reference_feature_angle(options.reference_feature_angle,
-            HP::crease_seed_angle(options.crease_seed_angle,
-            HP::turn_focus_band(options.turn_focus_band,
-            HP::relax_surface(options.relax_surface,
-            HP::time_limit(time_limit,
-            HP::stop_flag(&stop_requested,
-            HP::target_msj(options.target_msj,
-            HP::surface_tolerance(options.surface_tolerance,
-            HP::asj_smoothing(options.asj_smoothing,
-            HP::pull_back(options.pull_back,
-            HP::coarse_level_start(options.coarse_level,
-            HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
-                                            : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor)))))))))))))));
+  const auto public_np = CGAL::parameters::sharp_angle(options.sharp_angle)
+                           .reference_feature_angle(options.reference_feature_angle)
+                           .time_limit(time_limit)
+                           .stop_flag(&stop_requested)
+                           .target_msj(options.target_msj)
+                           .surface_tolerance(options.surface_tolerance)
+                           .method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
+                                                        : CGAL::Hexahedral_mesh_optimization::Method::package)
+                           .visitor(std::ref(visitor));
+  // the schedule's settings the tool's options expose (not public API)
+  const auto np = HMOI::add_internal_parameter(
+    HMOI::add_internal_parameter(
+      HMOI::add_internal_parameter(
+        HMOI::add_internal_parameter(
+          HMOI::add_internal_parameter(
+            HMOI::add_internal_parameter(public_np, INP::crease_seed_angle, options.crease_seed_angle),
+            INP::turn_focus_band, options.turn_focus_band),
+          INP::relax_surface, options.relax_surface),
+        INP::asj_smoothing, options.asj_smoothing),
+      INP::pull_back, options.pull_back),
+    INP::coarse_level_start, options.coarse_level);
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {
-    auto npr = HP::reference_surface(*reference, np);
+    const auto npr = HMOI::add_internal_parameter(np, INP::reference_surface, *reference);
     r = options.untangle_only ? CGAL::untangle_hex_mesh(mesh, npr) : CGAL::optimize_hex_mesh(mesh, npr);
   }
   else
@@ -325,7 +332,7 @@ int main(int argc, char** argv)
       // before anything else: a reference in another frame, or of another
       // object, is a bad argument (exit status 2, no output)
       const CGAL::Hexahedral_mesh_optimization::Reference_fit fit = CGAL::hex_mesh_reference_fit(
-        mesh, reference, CGAL::hex_mesh_parameters::surface_tolerance(options.surface_tolerance));
+        mesh, reference, CGAL::parameters::surface_tolerance(options.surface_tolerance));
       if(fit.verdict == CGAL::Hexahedral_mesh_optimization::Reference_fit::mismatched)
       {
         std::cerr << program << ": error: reference surface '" << options.reference << "' and mesh '"

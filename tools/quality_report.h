@@ -286,7 +286,7 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
     for(std::size_t i = 0; i < r.unresolved.size(); ++i)
     {
       const auto& e = r.unresolved[i];
-      static const char* reasons[] = {"locked", "region_exhausted", "time_limit"};
+      static const char* reasons[] = {"locked", "region_exhausted", "time_limit", "constrained"};
       s << (i ? ", " : "") << "{\"hex\": " << e.hex << ", \"scaled_jacobian\": " << json_number(e.scaled_jacobian)
         << ", \"reason\": \"" << reasons[int(e.reason)] << "\", \"details\": " << json_string(e.details) << "}";
     }

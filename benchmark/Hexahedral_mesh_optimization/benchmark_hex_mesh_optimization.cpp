@@ -171,7 +171,7 @@
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Indexed_hex_mesh<K::Point_3> Mesh;
 namespace HMO = CGAL::Hexahedral_mesh_optimization;
-namespace HP = CGAL::hex_mesh_parameters;
+namespace INP = CGAL::hex_mesh_internal_np;
 typedef std::chrono::steady_clock Clock;
 
 #include "boundary_layer_set.h" // uses Mesh, K and HMO
@@ -285,18 +285,18 @@ static HMO::Optimization_result run_optimiser(Mesh& mesh, bool untangle_only, co
                                               double tolerance, Setup_visitor& visitor, bool paper = false)
 {
   typedef HMO::internal::Optimization_schedule Schedule;
-  const auto np = CGAL::Named_function_parameters<Schedule, CGAL::hex_mesh_internal_np::schedule_t,
-                                                  CGAL::parameters::Default_named_parameters>(
-    paper ? Schedule::paper() : g_schedule, CGAL::parameters::default_values())
+  using HMO::internal::add_internal_parameter;
+  const auto np = CGAL::parameters::method(paper ? HMO::Method::paper : HMO::Method::package)
                     .visitor(std::ref(visitor));
-  const auto npm = HP::pull_back(paper || g_pull_back, HP::method(paper ? HMO::Method::paper : HMO::Method::package, np));
+  const auto npm = add_internal_parameter(add_internal_parameter(np, INP::schedule, paper ? Schedule::paper() : g_schedule),
+                                          INP::pull_back, paper || g_pull_back);
   visitor.start = Clock::now();
   if(untangle_only)
     return reference.is_empty() ? CGAL::untangle_hex_mesh(mesh, npm)
-                                : CGAL::untangle_hex_mesh(mesh, HP::reference_surface(reference, npm));
-  const auto npt = HP::surface_tolerance(tolerance, npm);
+                                : CGAL::untangle_hex_mesh(mesh, add_internal_parameter(npm, INP::reference_surface, reference));
+  const auto npt = add_internal_parameter(npm, INP::surface_tolerance, tolerance);
   return reference.is_empty() ? CGAL::optimize_hex_mesh(mesh, npt)
-                              : CGAL::optimize_hex_mesh(mesh, HP::reference_surface(reference, npt));
+                              : CGAL::optimize_hex_mesh(mesh, add_internal_parameter(npt, INP::reference_surface, reference));
 }
 
 // ---------------------------------------------------------------------------

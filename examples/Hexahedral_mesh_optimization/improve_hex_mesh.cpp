@@ -61,8 +61,7 @@ int main(int argc, char* argv[])
   //    average scaled Jacobian; boundary moves stay within 0.5 % of the
   //    bounding-box diagonal of the input's boundary
   const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(
-    mesh, CGAL::hex_mesh_parameters::target_msj(target_msj,
-          CGAL::hex_mesh_parameters::surface_tolerance(0.005)));
+    mesh, CGAL::parameters::target_msj(target_msj).surface_tolerance(0.005));
   std::cout << "improved: MSJ " << r.msj_before << " -> " << r.msj_after << ", ASJ " << r.asj_before << " -> "
             << r.asj_after << ", surface error " << r.surface_error << "; target "
             << (r.success ? "reached" : "not reached") << std::endl;

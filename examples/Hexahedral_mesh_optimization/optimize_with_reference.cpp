@@ -31,7 +31,6 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Indexed_hex_mesh<K::Point_3> Mesh;
 typedef CGAL::Surface_mesh<K::Point_3> Surface;
 namespace HMO = CGAL::Hexahedral_mesh_optimization;
-namespace HP = CGAL::hex_mesh_parameters;
 
 // A visitor derives from the default one (every hook does nothing) and
 // overrides the hooks it needs. It is passed by reference with
@@ -102,13 +101,11 @@ int main(int argc, char* argv[])
   }
   std::cout << "surface error before: " << CGAL::hex_mesh_surface_error(mesh, reference) << std::endl;
 
-  // The reference surface and the visitor are named parameters. CGAL's own
-  // `visitor` chains after the package's parameters (CGAL::hex_mesh_parameters).
+  // The reference surface and the visitor are named parameters: the
+  // package's parameters start the chain, CGAL's own (`visitor`) follow.
   Print_progress progress;
   const HMO::Optimization_result r = CGAL::optimize_hex_mesh(
-    mesh, HP::reference_surface(reference,
-          HP::target_msj(target_msj,
-          CGAL::parameters::visitor(std::ref(progress)))));
+    mesh, CGAL::parameters::reference_surface(reference).target_msj(target_msj).visitor(std::ref(progress)));
 
   std::cout << "optimised in " << progress.stages << " stages: inverted " << r.inverted_before << " -> "
             << r.inverted_after << ", MSJ " << r.msj_before << " -> " << r.msj_after << std::endl;

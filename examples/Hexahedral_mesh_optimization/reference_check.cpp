@@ -52,7 +52,7 @@ int main(int argc, char* argv[])
   // Against a triangle surface, with a volume tolerance of 2 % (default 1 %)
   // and the default outside tolerance (1 % of the reference's diagonal).
   const HMO::Reference_volume_report report = CGAL::check_hex_mesh_against_reference(
-    mesh, reference, CGAL::hex_mesh_parameters::volume_tolerance(0.02));
+    mesh, reference, CGAL::parameters::volume_tolerance(0.02));
   std::cout << "against " << surface_file << ":\n" << report.summary() << std::endl;
   if(report.has_error())
     return 1; // the reference bounds no volume, or TetGen is missing

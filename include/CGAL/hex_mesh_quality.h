@@ -17,6 +17,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_quality.h>
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/exact_validity.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
@@ -48,15 +49,13 @@ std::array<Vec3, 8> corner_positions(const PointRange& corners, const NamedParam
   return p;
 }
 
-/// the flat arrays of `mesh`, its points converted by the `geom_traits` of
-/// `np` (default: the kernel of its point type)
+/// the flat arrays of `mesh`, its points read through the `vertex_point_map`
+/// of `np` and converted by its `geom_traits` (defaults: the mesh's points,
+/// the kernel of their type)
 template <class HexMesh, class NamedParameters>
 Hex_mesh_arrays extract_with_traits(const HexMesh& mesh, const NamedParameters& np)
 {
-  typedef Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-  return Adapter::extract(mesh, parameters::choose_parameter(parameters::get_parameter(np, internal_np::geom_traits),
-                                                             Default_traits()));
+  return Hex_mesh_parameters<HexMesh, NamedParameters>::extract(mesh, np);
 }
 
 } // namespace internal
@@ -120,8 +119,7 @@ double hex_corner_scaled_jacobian(const PointRange& corners,
 \brief The Verdict scaled Jacobian of every hexahedron of a mesh, in the
 order of its hexahedra (for an LCC: the order of its 3-cells).
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
-  (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
+\tparam HexMesh a model of `HexMesh`
 
 \param mesh the mesh
 \param np an optional sequence of named parameters among the ones listed below
@@ -131,6 +129,11 @@ order of its hexahedra (for an LCC: the order of its 3-cells).
     \cgalParamDescription{an instance of a geometric traits class}
     \cgalParamType{a model of `HexMeshOptimizationTraits`}
     \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map}
+    \cgalParamDescription{a property map associating points to the vertices of `mesh`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is the `Point_3` of `geom_traits`}
+    \cgalParamDefault{the points of the mesh}
   \cgalParamNEnd
 \cgalNamedParamsEnd
 */
@@ -149,7 +152,7 @@ std::vector<double> hex_mesh_scaled_jacobians(const HexMesh& mesh,
 vertices, number of inverted elements (scaled Jacobian < 0), MSJ (minimum
 scaled Jacobian), ASJ (mean) and a histogram of the scaled Jacobian.
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+\tparam HexMesh a model of `HexMesh`
 
 \param mesh the mesh
 \param np an optional sequence of named parameters among the ones listed below
@@ -159,6 +162,11 @@ scaled Jacobian), ASJ (mean) and a histogram of the scaled Jacobian.
     \cgalParamDescription{an instance of a geometric traits class}
     \cgalParamType{a model of `HexMeshOptimizationTraits`}
     \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map}
+    \cgalParamDescription{a property map associating points to the vertices of `mesh`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is the `Point_3` of `geom_traits`}
+    \cgalParamDefault{the points of the mesh}
   \cgalParamNEnd
 \cgalNamedParamsEnd
 */
@@ -184,7 +192,7 @@ The coordinates are taken as doubles (`geom_traits`' `Compute_x_3` and
 so on, converted with `to_double()`): the certificate is exact for kernels
 with double coordinates, such as `Exact_predicates_inexact_constructions_kernel`.
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+\tparam HexMesh a model of `HexMesh`
 
 \param mesh the mesh
 \param np an optional sequence of named parameters among the ones listed below
@@ -194,6 +202,11 @@ with double coordinates, such as `Exact_predicates_inexact_constructions_kernel`
     \cgalParamDescription{an instance of a geometric traits class}
     \cgalParamType{a model of `HexMeshOptimizationTraits`}
     \cgalParamDefault{the kernel of the mesh's point type}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map}
+    \cgalParamDescription{a property map associating points to the vertices of `mesh`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is the `Point_3` of `geom_traits`}
+    \cgalParamDefault{the points of the mesh}
   \cgalParamNEnd
 \cgalNamedParamsEnd
 */

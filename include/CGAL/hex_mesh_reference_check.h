@@ -17,6 +17,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/Indexed_hex_mesh.h>
 #include <CGAL/Hexahedral_mesh_optimization/Reference_volume_report.h>
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/checked_parameters.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Reference_check/Reference_volume_check.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
@@ -35,25 +36,10 @@ namespace internal {
 
 /// whether `T` is one of the hexahedral mesh types of the package (its
 /// boundary is then the reference surface)
-template <class T>
-struct Is_hex_mesh : std::false_type {};
-
-template <class Point_3>
-struct Is_hex_mesh<Indexed_hex_mesh<Point_3> > : std::true_type {};
-
-template <class Traits_, class Items_, class Alloc_,
-          template <unsigned int, class, class, class, class> class CMap, class Storage_>
-struct Is_hex_mesh<Linear_cell_complex_for_combinatorial_map<3, 3, Traits_, Items_, Alloc_, CMap, Storage_> >
-  : std::true_type {};
-
 template <class HexMesh, class NamedParameters>
 Hex_mesh_arrays hex_mesh_arrays_of(const HexMesh& mesh, const NamedParameters& np)
 {
-  typedef Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
-  const auto gt = parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::geom_traits),
-                                               Default_traits());
-  return Adapter::extract(mesh, gt);
+  return Hex_mesh_parameters<HexMesh, NamedParameters>::extract(mesh, np);
 }
 
 // the reference surface: the boundary of a hex mesh ...
@@ -110,8 +96,7 @@ it. The package must have been configured with TetGen
 (`CGAL_HMO_HAVE_TETGEN`, defined by its CMake target when TetGen is found);
 otherwise every call reports that TetGen is unavailable.
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
-  (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
+\tparam HexMesh a model of `HexMesh`
 \tparam Reference a model of `FaceListGraph` (faces of degree larger than 3
   are cut into fans), or one of the two hexahedral mesh types above, whose
   boundary (cut along the diagonals from the first vertex of each quadrilateral)
@@ -126,13 +111,13 @@ otherwise every call reports that TetGen is unavailable.
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{volume_tolerance}
-    \cgalParamDescription{largest accepted relative volume difference (in `CGAL::hex_mesh_parameters`)}
+    \cgalParamDescription{largest accepted relative volume difference}
     \cgalParamType{`double`}
     \cgalParamDefault{0.01}
   \cgalParamNEnd
   \cgalParamNBegin{outside_tolerance}
     \cgalParamDescription{distance to the reference, as a fraction of its bounding-box diagonal,
-      beyond which a vertex outside the reference volume fails the check (in `CGAL::hex_mesh_parameters`)}
+      beyond which a vertex outside the reference volume fails the check}
     \cgalParamType{`double`}
     \cgalParamDefault{0.01}
   \cgalParamNEnd
@@ -153,7 +138,7 @@ otherwise every call reports that TetGen is unavailable.
 CGAL::Surface_mesh<K::Point_3> surface;
 CGAL::IO::read_reference_surface("bunny_reference.obj", surface);
 const auto report = CGAL::check_hex_mesh_against_reference(mesh, surface,
-    CGAL::hex_mesh_parameters::volume_tolerance(0.02));
+    CGAL::parameters::volume_tolerance(0.02));
 std::cout << report << std::endl; // report.passed(), report.relative_volume_difference, ...
 \endcode
 */

@@ -57,6 +57,7 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.beta = (std::max)(u.beta, 500.);
   s.reference_points = u.reference_points;
   s.reference_triangles = u.reference_triangles;
+  s.reference_creases = u.reference_creases;
 }
 
 /// `first` followed by `later` on the mesh `first` left: the stages of both,
@@ -154,13 +155,11 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  typedef Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+  typedef Hex_mesh_parameters<HexMesh, NamedParameters> Mesh_parameters;
 
   const auto start = std::chrono::steady_clock::now(); // for the result's seconds only
   Time_limit time_limit(time_limit_parameter(np));
   time_limit.watch(stop_flag_parameter(np));
-  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
   typedef typename std::remove_reference<decltype(visitor)>::type Visitor;
@@ -168,12 +167,14 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   Untangle_settings u;
   std::vector<Vec3> ref_points;
   std::vector<Tri> ref_tris;
-  read_untangle_parameters(np, gt, u, ref_points, ref_tris);
+  std::vector<std::array<std::size_t, 2> > ref_creases;
+  read_untangle_parameters(np, u, ref_points, ref_tris, ref_creases);
   Quality_settings s;
   read_quality_parameters(np, u, s);
   u.time_limit = s.time_limit = &time_limit; // one hard stop for the whole pipeline
 
-  Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  Hex_mesh_arrays arrays = Mesh_parameters::extract(mesh, np);
+  const std::vector<Vec3> read = arrays.points;
   const std::string warning =
     require_reference_fit(arrays, s.reference_points, s.reference_triangles, s.surface_tolerance);
   const Hex_mesh_arrays original = arrays;
@@ -210,7 +211,7 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   else result = q;
   if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
   if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
-  Adapter::write_back(arrays, mesh, gt);
+  Mesh_parameters::write_back(arrays, read, mesh, np);
   return result;
 }
 
@@ -245,7 +246,7 @@ Sections 3.3 and 3.4 of Xu & Chen (2018) and the final smoothing:
 The mesh returned never has a lower MSJ (nor more inverted elements) than the
 input: when nothing better is found the input is returned as it was.
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
+\tparam HexMesh a model of `HexMesh`
 
 \param mesh the mesh, optimised in place
 \param np an optional sequence of named parameters among the ones listed below
@@ -276,50 +277,10 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamType{`double`}
     \cgalParamDefault{150}
   \cgalParamNEnd
-  \cgalParamNBegin{crease_seed_angle}
-    \cgalParamDescription{in the quality stages, a crease starts only at a boundary edge whose dihedral angle is below this; an edge below `sharp_angle` only continues a crease from its end (hysteresis), so that the many edges just below `sharp_angle` of a coarse curved boundary make no short creases meeting in spurious corners. 180 or `sharp_angle`: every edge below `sharp_angle` is a crease. It is off by default because its gains and losses are spread over the published rows and the stress set (the benchmark's RESULTS.md has both); in [0, 180] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{180}
-  \cgalParamNEnd
-  \cgalParamNBegin{turn_focus_band}
-    \cgalParamDescription{the turns of max-min and ASJ smoothing before the final ASJ smoothing: each turn's ASJ pass reshapes the neighbourhood of the elements below the MSJ plus this band, in (0, 1] (`std::invalid_argument` otherwise). The default meets the package's time targets on the published rows; 0.2 reaches a higher MSJ for more time (the benchmark's RESULTS.md has the published rows with both)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{0.15}
-  \cgalParamNEnd
-  \cgalParamNBegin{alpha}
-    \cgalParamDescription{weight of the feature and corner constraints in the edge-angle stages (a value below 500 counts as 500); in [0, 1e12] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{1000}
-  \cgalParamNEnd
-  \cgalParamNBegin{beta}
-    \cgalParamDescription{weight of the tangent-plane constraint in the edge-angle stages (a value below 500 counts as 500); in [0, 1e12] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{1000}
-  \cgalParamNEnd
   \cgalParamNBegin{method}
     \cgalParamDescription{`Hexahedral_mesh_optimization::Method::package`: the package's pipeline; `Method::paper`: the method of Xu & Chen alone (edge-angle untangling with relaxation, SLIM pull-back, MSJ stages by the edge-angle optimiser, ASJ smoothing), for reproducing the paper}
     \cgalParamType{`Hexahedral_mesh_optimization::Method`}
     \cgalParamDefault{`Method::package`}
-  \cgalParamNEnd
-  \cgalParamNBegin{edge_angle_stages}
-    \cgalParamDescription{whether each MSJ stage runs the edge-angle optimiser (up to 8 passes while they raise the MSJ by 0.005) where the max-min smoothing falls short}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`false`, `true` with `Method::paper`}
-  \cgalParamNEnd
-  \cgalParamNBegin{pull_back}
-    \cgalParamDescription{whether the pull-back runs when the surface error exceeds the tolerance (its result is kept only if it lowers the surface error)}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`true`}
-  \cgalParamNEnd
-  \cgalParamNBegin{coarse_level_start}
-    \cgalParamDescription{whether a mesh without inverted elements that its connectivity shows to be a 1→8 refinement (every hex split into 8, once or more) is optimised at its coarsest level of at least 4096 hexes first, the stages then starting from that level's displacement carried down trilinearly: on a finely refined mesh the turns end in a local optimum that a coarse vertex's move, which shifts many fine layers at once, avoids}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`true`, `false` with `Method::paper`}
-  \cgalParamNEnd
-  \cgalParamNBegin{asj_smoothing}
-    \cgalParamDescription{whether the ASJ smoothing runs: at the end, and in turn with the MSJ stages while that raises the MSJ}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{time_limit}
     \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine. It is at least 0 (`std::invalid_argument` otherwise).}
@@ -330,6 +291,26 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state that passed its checks, never worse than the input), and the result's `interrupted` is true}
     \cgalParamType{`const std::atomic<bool>*`}
     \cgalParamDefault{none}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map}
+    \cgalParamDescription{a property map associating points to the vertices of `mesh`; only the vertices that moved are written back (`put()`), the others keep their points exactly, whatever the kernel}
+    \cgalParamType{a model of `ReadWritePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is the `Point_3` of `geom_traits`}
+    \cgalParamDefault{the points of the mesh}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_is_constrained_map}
+    \cgalParamDescription{a property map saying which vertices are constrained: a constrained vertex never moves, in any stage (untangling, surface pull-back, smoothing); an inverted hexahedron that only moving constrained vertices could free is reported in `Optimization_result::unresolved` with the reason `constrained`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is `bool`}
+    \cgalParamDefault{no vertex is constrained}
+  \cgalParamNEnd
+  \cgalParamNBegin{reference_vertex_point_map}
+    \cgalParamDescription{with `reference_surface`: the points of its vertices}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of the reference surface and whose value type is a point of a CGAL kernel}
+    \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, reference)`}
+  \cgalParamNEnd
+  \cgalParamNBegin{edge_is_constrained_map}
+    \cgalParamDescription{with `reference_surface` and feature recovery (`reference_feature_angle` above 0): edges of the reference that are creases whatever their dihedral angle, added to those detected; the mesh boundary recovers them as it recovers the detected ones}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the edge descriptor of the reference surface and whose value type is `bool`}
+    \cgalParamDefault{no edge is given}
   \cgalParamNEnd
   \cgalParamNBegin{visitor}
     \cgalParamDescription{an object notified of stages and rounds}

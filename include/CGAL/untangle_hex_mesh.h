@@ -29,6 +29,10 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
+#include <boost/property_map/property_map.hpp>
+#include <boost/unordered_map.hpp>
+
+#include <array>
 #include <atomic>
 #include <string>
 #include <vector>
@@ -39,16 +43,41 @@ namespace internal {
 
 struct No_reference_surface {};
 
-/// a FaceListGraph as a triangle soup (polygons fanned), its points read
-/// through its own `vertex_point` map
-template <class TriangleMesh, class GeomTraits>
-void face_graph_to_soup(const TriangleMesh& tm, const GeomTraits& gt, std::vector<Vec3>& points, std::vector<Tri>& tris)
+/// the edges of `tm` that `ecm` marks, as pairs of soup indices (`index`)
+template <class TriangleMesh, class Index, class EdgeIsConstrainedMap>
+void constrained_edges_to_soup(const TriangleMesh& tm, const Index& index, const EdgeIsConstrainedMap& ecm,
+                               std::vector<std::array<std::size_t, 2> >& creases)
 {
-  face_graph_to_triangle_soup(tm, get(CGAL::vertex_point, tm), gt, points, tris);
+  for(auto e : edges(tm))
+    if(get(ecm, e)) creases.push_back({index.at(source(e, tm)), index.at(target(e, tm))});
 }
 
-template <class GeomTraits>
-void face_graph_to_soup(const No_reference_surface&, const GeomTraits&, std::vector<Vec3>&, std::vector<Tri>&)
+template <class TriangleMesh, class Index>
+void constrained_edges_to_soup(const TriangleMesh&, const Index&, CGAL::internal_np::Param_not_found,
+                               std::vector<std::array<std::size_t, 2> >&)
+{}
+
+/// The reference surface, a FaceListGraph, as a triangle soup (polygons
+/// fanned): its points read through the `reference_vertex_point_map` of
+/// `np` (default: its own `vertex_point` map) with the kernel of their
+/// type, and the edges the `edge_is_constrained_map` of `np` marks, as
+/// pairs of soup indices.
+template <class TriangleMesh, class NamedParameters>
+void reference_to_soup(const TriangleMesh& tm, const NamedParameters& np, std::vector<Vec3>& points,
+                       std::vector<Tri>& tris, std::vector<std::array<std::size_t, 2> >& creases)
+{
+  const auto vpm = parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::reference_vertex_point_map),
+                                                get_const_property_map(CGAL::vertex_point, tm));
+  typedef typename boost::property_traits<typename std::decay<decltype(vpm)>::type>::value_type Point;
+  face_graph_to_triangle_soup(tm, vpm, typename Kernel_traits<Point>::Kernel(), points, tris);
+  boost::unordered_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, std::size_t> index;
+  for(auto v : vertices(tm)) index.emplace(v, index.size()); // the soup's order
+  constrained_edges_to_soup(tm, index, parameters::get_parameter(np, CGAL::internal_np::edge_is_constrained), creases);
+}
+
+template <class NamedParameters>
+void reference_to_soup(const No_reference_surface&, const NamedParameters&, std::vector<Vec3>&, std::vector<Tri>&,
+                       std::vector<std::array<std::size_t, 2> >&)
 {}
 
 /// the `stop_flag` named parameter, or null
@@ -61,9 +90,9 @@ const std::atomic<bool>* stop_flag_parameter(const NamedParameters& np)
 
 /// the untangler's settings and the reference surface (as a soup) from named
 /// parameters (the time limit, which starts when it is made, is the caller's)
-template <class NamedParameters, class GeomTraits>
-void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, Untangle_settings& s,
-                              std::vector<Vec3>& ref_points, std::vector<Tri>& ref_tris)
+template <class NamedParameters>
+void read_untangle_parameters(const NamedParameters& np, Untangle_settings& s, std::vector<Vec3>& ref_points,
+                              std::vector<Tri>& ref_tris, std::vector<std::array<std::size_t, 2> >& ref_creases)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -85,13 +114,14 @@ void read_untangle_parameters(const NamedParameters& np, const GeomTraits& gt, U
   const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
   s.schedule = choose_parameter(get_parameter(np, hex_mesh_internal_np::schedule),
                                 method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule());
-  face_graph_to_soup(
+  reference_to_soup(
     choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_surface), No_reference_surface()),
-    gt, ref_points, ref_tris);
+    np, ref_points, ref_tris, ref_creases);
   if(!ref_tris.empty())
   {
     s.reference_points = &ref_points;
     s.reference_triangles = &ref_tris;
+    s.reference_creases = &ref_creases;
   }
 }
 
@@ -114,7 +144,7 @@ rises from one accepted step to the next), and the paper's ξ / α / β schedule
 that lets the surface relax when it must. What that stage leaves (also
 regions of more than 3000 hexes, and what is still inverted after 8 rounds
 without progress) is handed to a second stage, a foldover-free barrier
-energy on the 9 Jacobian samples of each hex (`barrier_fallback`), with a
+energy on the 9 Jacobian samples of each hex, with a
 strong boundary weight first and weaker ones only for what stays inverted.
 A last stage ("surface") pulls the boundary back toward the target surface
 with the same energy used as a true barrier, so that no element inverts on
@@ -126,12 +156,11 @@ Every stage ends on convergence or on a work cap counted in rounds, passes
 or iterations, never on the clock: the same input and parameters give the
 same output on any machine, under any load and with any number of threads.
 
-\tparam HexMesh `Indexed_hex_mesh` or `Linear_cell_complex_for_combinatorial_map<3,3>`
-  (include `CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h` for the latter)
+\tparam HexMesh a model of `HexMesh`
 
 \param mesh the mesh, optimised in place
 \param np an optional sequence of named parameters among the ones listed below
-  (the package's own parameters live in `CGAL::hex_mesh_parameters`)
+  (the package's parameters start the chain, CGAL's follow: see the user manual)
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{reference_surface}
@@ -154,40 +183,10 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamType{`double`}
     \cgalParamDefault{150}
   \cgalParamNEnd
-  \cgalParamNBegin{alpha}
-    \cgalParamDescription{initial weight of the feature and corner constraints; in [0, 1e12] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{1000}
-  \cgalParamNEnd
-  \cgalParamNBegin{beta}
-    \cgalParamDescription{initial weight of the tangent-plane constraint; in [0, 1e12] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{1000}
-  \cgalParamNEnd
-  \cgalParamNBegin{xi}
-    \cgalParamDescription{initial ξ: target edge lengths are at least ξ times the mean boundary edge length; in [0, 10] (`std::invalid_argument` otherwise)}
-    \cgalParamType{`double`}
-    \cgalParamDefault{0.6}
-  \cgalParamNEnd
-  \cgalParamNBegin{relax_surface}
-    \cgalParamDescription{whether α and β may be halved when the untangling stalls (the surface then moves)}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`true`}
-  \cgalParamNEnd
-  \cgalParamNBegin{local_iterations}
-    \cgalParamDescription{local-global iterations per region and round; at least 1 (`std::invalid_argument` otherwise)}
-    \cgalParamType{`int`}
-    \cgalParamDefault{20}
-  \cgalParamNEnd
   \cgalParamNBegin{number_of_iterations}
     \cgalParamDescription{maximum number of rounds of the edge-angle stage; at least 0 (`std::invalid_argument` otherwise)}
     \cgalParamType{`int`}
     \cgalParamDefault{60}
-  \cgalParamNEnd
-  \cgalParamNBegin{barrier_fallback}
-    \cgalParamDescription{whether the barrier stages run: with the boundary fixed before the edge-angle stage, and on what the edge-angle stage leaves}
-    \cgalParamType{`bool`}
-    \cgalParamDefault{`true`}
   \cgalParamNEnd
   \cgalParamNBegin{method}
     \cgalParamDescription{`Hexahedral_mesh_optimization::Method::package`: the stages above; `Method::paper`: the edge-angle stage alone, as in the paper (no barrier stages, no hand-over)}
@@ -203,6 +202,26 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state reached, never worse than the input), and the result's `interrupted` is true}
     \cgalParamType{`const std::atomic<bool>*`}
     \cgalParamDefault{none}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_point_map}
+    \cgalParamDescription{a property map associating points to the vertices of `mesh`; only the vertices that moved are written back (`put()`), the others keep their points exactly, whatever the kernel}
+    \cgalParamType{a model of `ReadWritePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is the `Point_3` of `geom_traits`}
+    \cgalParamDefault{the points of the mesh}
+  \cgalParamNEnd
+  \cgalParamNBegin{vertex_is_constrained_map}
+    \cgalParamDescription{a property map saying which vertices are constrained: a constrained vertex never moves, in any stage (untangling, surface pull-back, smoothing); an inverted hexahedron that only moving constrained vertices could free is reported in `Optimization_result::unresolved` with the reason `constrained`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of `HexMesh` and whose value type is `bool`}
+    \cgalParamDefault{no vertex is constrained}
+  \cgalParamNEnd
+  \cgalParamNBegin{reference_vertex_point_map}
+    \cgalParamDescription{with `reference_surface`: the points of its vertices}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the vertex descriptor of the reference surface and whose value type is a point of a CGAL kernel}
+    \cgalParamDefault{`get_const_property_map(CGAL::vertex_point, reference)`}
+  \cgalParamNEnd
+  \cgalParamNBegin{edge_is_constrained_map}
+    \cgalParamDescription{with `reference_surface` and feature recovery (`reference_feature_angle` above 0): edges of the reference that are creases whatever their dihedral angle, added to those detected; the mesh boundary recovers them as it recovers the detected ones}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the edge descriptor of the reference surface and whose value type is `bool`}
+    \cgalParamDefault{no edge is given}
   \cgalParamNEnd
   \cgalParamNBegin{visitor}
     \cgalParamDescription{an object notified of stages and rounds}
@@ -227,13 +246,10 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
 {
   namespace HMO = Hexahedral_mesh_optimization;
   using parameters::choose_parameter;
-  using parameters::get_parameter;
-  typedef HMO::internal::Hex_mesh_adapter<HexMesh> Adapter;
-  typedef typename Kernel_traits<typename Adapter::Point>::Kernel Default_traits;
+  typedef HMO::internal::Hex_mesh_parameters<HexMesh, CGAL_NP_CLASS> Mesh_parameters;
 
   HMO::internal::Time_limit time_limit(HMO::internal::time_limit_parameter(np));
   time_limit.watch(HMO::internal::stop_flag_parameter(np));
-  const auto gt = choose_parameter(get_parameter(np, internal_np::geom_traits), Default_traits());
   HMO::Default_optimization_visitor default_visitor;
   auto&& visitor = choose_parameter(parameters::get_parameter_reference(np, internal_np::visitor), default_visitor);
 
@@ -241,9 +257,11 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   s.time_limit = &time_limit;
   std::vector<HMO::internal::Vec3> ref_points;
   std::vector<HMO::internal::Tri> ref_tris;
-  HMO::internal::read_untangle_parameters(np, gt, s, ref_points, ref_tris);
+  std::vector<std::array<std::size_t, 2> > ref_creases;
+  HMO::internal::read_untangle_parameters(np, s, ref_points, ref_tris, ref_creases);
 
-  HMO::internal::Hex_mesh_arrays arrays = Adapter::extract(mesh, gt);
+  HMO::internal::Hex_mesh_arrays arrays = Mesh_parameters::extract(mesh, np);
+  const std::vector<HMO::internal::Vec3> read = arrays.points;
   const std::string warning = HMO::internal::require_reference_fit(
     arrays, s.reference_points, s.reference_triangles,
     HMO::internal::surface_tolerance_parameter(np));
@@ -252,7 +270,7 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   if(!warning.empty()) result.warnings.push_back(warning);
   if(result.inverted_after > 0)
     result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
-  Adapter::write_back(arrays, mesh, gt);
+  Mesh_parameters::write_back(arrays, read, mesh, np);
   return result;
 }
 

@@ -36,7 +36,8 @@ typedef CGAL::Indexed_hex_mesh<Point> Mesh;
 typedef CGAL::Linear_cell_complex_traits<3, K> LCC_traits;
 typedef CGAL::Linear_cell_complex_for_combinatorial_map<3, 3, LCC_traits> LCC;
 namespace HMO = CGAL::Hexahedral_mesh_optimization;
-namespace HP = CGAL::hex_mesh_parameters;
+namespace INP = CGAL::hex_mesh_internal_np;
+using CGAL::Hexahedral_mesh_optimization::internal::add_internal_parameter;
 
 /// n×n×n grid of unit cubes bent into a cylindrical shell sector
 static Mesh shell(int n, double bend)
@@ -102,7 +103,7 @@ static void test_stage_schedule()
 
   Recorder rec;
   const HMO::Optimization_result r =
-    CGAL::improve_hex_mesh_quality(m, HP::asj_smoothing(false, CGAL::parameters::visitor(std::ref(rec))));
+    CGAL::improve_hex_mesh_quality(m, add_internal_parameter(CGAL::parameters::visitor(std::ref(rec)), INP::asj_smoothing, false));
   // independent recount
   HMO_CHECK_CLOSE(r.msj_before, msj0, 1e-12);
   HMO_CHECK_CLOSE(r.msj_after, recount_msj(m), 1e-12);
@@ -143,7 +144,7 @@ static void test_stage_schedule()
 
   // a target: the schedule stops there and says it succeeded
   Mesh t = input;
-  const HMO::Optimization_result rt = CGAL::improve_hex_mesh_quality(t, HP::target_msj(0.3, HP::asj_smoothing(false)));
+  const HMO::Optimization_result rt = CGAL::improve_hex_mesh_quality(t, add_internal_parameter(CGAL::parameters::target_msj(0.3), INP::asj_smoothing, false));
   HMO_CHECK(rt.success);
   HMO_CHECK(rt.msj_after >= 0.3);
   for(const HMO::Stage_report& s : rt.stages)
@@ -151,7 +152,7 @@ static void test_stage_schedule()
 
   // ASJ smoothing on top never lowers the MSJ the stages reached
   Mesh a = input;
-  const HMO::Optimization_result ra = CGAL::improve_hex_mesh_quality(a, HP::target_msj(0.3));
+  const HMO::Optimization_result ra = CGAL::improve_hex_mesh_quality(a, CGAL::parameters::target_msj(0.3));
   HMO_CHECK(ra.msj_after >= 0.3);
   HMO_CHECK(ra.asj_after >= rt.asj_after - 1e-12);
 }
@@ -175,8 +176,8 @@ static void test_turn_focus_band()
   input.hexahedra = hmo_test::structured_hexes(n, n, n);
   perturb_interior(input, n, 0.1, 3);
   Mesh narrow = input, wide = input;
-  const HMO::Optimization_result rn = CGAL::improve_hex_mesh_quality(narrow, HP::turn_focus_band(0.05));
-  const HMO::Optimization_result rw = CGAL::improve_hex_mesh_quality(wide, HP::turn_focus_band(0.6));
+  const HMO::Optimization_result rn = CGAL::improve_hex_mesh_quality(narrow, add_internal_parameter(CGAL::parameters::default_values(), INP::turn_focus_band, 0.05));
+  const HMO::Optimization_result rw = CGAL::improve_hex_mesh_quality(wide, add_internal_parameter(CGAL::parameters::default_values(), INP::turn_focus_band, 0.6));
   HMO_CHECK(rn.inverted_after == 0 && rw.inverted_after == 0);
   HMO_CHECK(rn.msj_after > rn.msj_before && rw.msj_after > rw.msj_before);
   HMO_CHECK_CLOSE(rn.msj_after, recount_msj(narrow), 1e-12);
@@ -192,14 +193,14 @@ static void test_turn_focus_band()
     HMO_CHECK(b.points == input.points);
   };
   for(const double bad : {0., -0.1, 1.5, std::nan("")})
-    refused("turn_focus_band", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, HP::turn_focus_band(bad)); });
+    refused("turn_focus_band", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, add_internal_parameter(CGAL::parameters::default_values(), INP::turn_focus_band, bad)); });
   // the other numbers the library takes are checked alike (NaN included)
   for(const double bad : {-1.5, 1.5, std::nan("")})
-    refused("target_msj", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, HP::target_msj(bad)); });
+    refused("target_msj", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, CGAL::parameters::target_msj(bad)); });
   for(const double bad : {-0.1, 1.5, std::nan("")})
   {
-    refused("surface_tolerance", [bad](Mesh& b) { CGAL::optimize_hex_mesh(b, HP::surface_tolerance(bad)); });
-    refused("surface_tolerance", [bad](Mesh& b) { CGAL::untangle_hex_mesh(b, HP::surface_tolerance(bad)); });
+    refused("surface_tolerance", [bad](Mesh& b) { CGAL::optimize_hex_mesh(b, CGAL::parameters::surface_tolerance(bad)); });
+    refused("surface_tolerance", [bad](Mesh& b) { CGAL::untangle_hex_mesh(b, CGAL::parameters::surface_tolerance(bad)); });
   }
   // the untangling's numbers, through all three functions, and the time limit
   const double nan = std::nan("");
@@ -214,21 +215,21 @@ static void test_turn_focus_band()
     };
     for(const double bad : {-1., 181., nan})
     {
-      refused("sharp_angle", through(HP::sharp_angle(bad)));
-      refused("reference_feature_angle", through(HP::reference_feature_angle(bad)));
+      refused("sharp_angle", through(CGAL::parameters::sharp_angle(bad)));
+      refused("reference_feature_angle", through(CGAL::parameters::reference_feature_angle(bad)));
     }
     for(const double bad : {-1., 2e12, nan})
     {
-      refused("alpha", through(HP::alpha(bad)));
-      refused("beta", through(HP::beta(bad)));
+      refused("alpha", through(add_internal_parameter(CGAL::parameters::default_values(), INP::alpha, bad)));
+      refused("beta", through(add_internal_parameter(CGAL::parameters::default_values(), INP::beta, bad)));
     }
-    for(const double bad : {-0.1, 11., nan}) refused("xi", through(HP::xi(bad)));
-    refused("local_iterations", through(HP::local_iterations(0)));
+    for(const double bad : {-0.1, 11., nan}) refused("xi", through(add_internal_parameter(CGAL::parameters::default_values(), INP::xi, bad)));
+    refused("local_iterations", through(add_internal_parameter(CGAL::parameters::default_values(), INP::local_iterations, 0)));
     refused("number_of_iterations", through(CGAL::parameters::number_of_iterations(-1)));
-    for(const double bad : {-1., nan}) refused("time_limit", through(HP::time_limit(bad)));
+    for(const double bad : {-1., nan}) refused("time_limit", through(CGAL::parameters::time_limit(bad)));
   }
   for(const double bad : {-1., 181., nan})
-    refused("crease_seed_angle", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, HP::crease_seed_angle(bad)); });
+    refused("crease_seed_angle", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, add_internal_parameter(CGAL::parameters::default_values(), INP::crease_seed_angle, bad)); });
 }
 
 static void test_never_worse()
@@ -261,7 +262,7 @@ static void test_nothing_to_do()
   HMO_CHECK(msj > 0.2 && msj < 0.95);
   Recorder rec;
   const HMO::Optimization_result r =
-    CGAL::optimize_hex_mesh(m, HP::target_msj(msj - 0.05, CGAL::parameters::visitor(std::ref(rec))));
+    CGAL::optimize_hex_mesh(m, CGAL::parameters::target_msj(msj - 0.05).visitor(std::ref(rec)));
   HMO_CHECK(m.points == input.points);
   HMO_CHECK(r.success && r.inverted_after == 0);
   HMO_CHECK(r.msj_before == msj && r.msj_after == msj);
@@ -271,7 +272,7 @@ static void test_nothing_to_do()
   HMO_CHECK(rec.started.size() == 1 && rec.finished.size() == 1);
   // the same mesh with a target above its MSJ: the stages run and raise it
   Mesh again = input;
-  const HMO::Optimization_result up = CGAL::improve_hex_mesh_quality(again, HP::target_msj(msj + 0.05));
+  const HMO::Optimization_result up = CGAL::improve_hex_mesh_quality(again, CGAL::parameters::target_msj(msj + 0.05));
   HMO_CHECK(up.stages.size() > 1 && up.msj_after > msj);
 }
 
@@ -305,7 +306,7 @@ static void test_paper_method()
   perturb_interior(m, n, 0.6, 5);
   const CGAL::Hex_mesh_quality q0 = CGAL::hex_mesh_quality(m);
   HMO_CHECK(q0.inverted > 0);
-  const HMO::Optimization_result r = CGAL::optimize_hex_mesh(m, HP::method(HMO::Method::paper));
+  const HMO::Optimization_result r = CGAL::optimize_hex_mesh(m, CGAL::parameters::method(HMO::Method::paper));
   HMO_CHECK(r.inverted_after <= q0.inverted);
   if(r.inverted_after == q0.inverted) HMO_CHECK(r.msj_after >= q0.msj - 1e-12);
   HMO_CHECK_CLOSE(r.msj_after, recount_msj(m), 1e-12);
@@ -344,7 +345,7 @@ static void test_lcc()
   std::string why;
   HMO_CHECK(CGAL::build_linear_cell_complex(m, lcc, &why));
   const double before = CGAL::hex_mesh_quality(lcc).msj;
-  const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(lcc, HP::target_msj(0.5));
+  const HMO::Optimization_result r = CGAL::improve_hex_mesh_quality(lcc, CGAL::parameters::target_msj(0.5));
   HMO_CHECK_CLOSE(r.msj_before, before, 1e-12);
   HMO_CHECK_CLOSE(CGAL::hex_mesh_quality(lcc).msj, r.msj_after, 1e-12);
   HMO_CHECK(r.msj_after >= 0.5);
@@ -423,15 +424,15 @@ static void test_reference_fit()
   const Surface far = boundary_of(10., 1000.);
   const Mesh before = m;
   int thrown = 0;
-  try { CGAL::improve_hex_mesh_quality(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  try { CGAL::improve_hex_mesh_quality(m, CGAL::parameters::reference_surface(far)); }
   catch(const HMO::Reference_mismatch& e)
   {
     ++thrown;
     HMO_CHECK(std::string(e.what()).find("do not overlap") != std::string::npos);
   }
-  try { CGAL::optimize_hex_mesh(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  try { CGAL::optimize_hex_mesh(m, CGAL::parameters::reference_surface(far)); }
   catch(const HMO::Reference_mismatch&) { ++thrown; }
-  try { CGAL::untangle_hex_mesh(m, CGAL::hex_mesh_parameters::reference_surface(far)); }
+  try { CGAL::untangle_hex_mesh(m, CGAL::parameters::reference_surface(far)); }
   catch(const std::invalid_argument&) { ++thrown; } // Reference_mismatch is one
   HMO_CHECK(thrown == 3);
   HMO_CHECK(m.points == before.points); // untouched
@@ -442,12 +443,12 @@ static void test_reference_fit()
   const Surface grown = boundary_of(1.05, 0.);
   Mesh moved = before; // (m stays as it is: `boundary_of` reads it)
   const HMO::Optimization_result r =
-    CGAL::improve_hex_mesh_quality(moved, CGAL::hex_mesh_parameters::reference_surface(grown));
+    CGAL::improve_hex_mesh_quality(moved, CGAL::parameters::reference_surface(grown));
   HMO_CHECK(r.warnings.size() == 1);
   HMO_CHECK(!r.warnings.empty() && r.warnings[0].find("starts off the reference") != std::string::npos);
   Mesh again = before;
   const HMO::Optimization_result r_own =
-    CGAL::improve_hex_mesh_quality(again, CGAL::hex_mesh_parameters::reference_surface(boundary_of(1., 0.)));
+    CGAL::improve_hex_mesh_quality(again, CGAL::parameters::reference_surface(boundary_of(1., 0.)));
   HMO_CHECK(r_own.warnings.empty());
 }
 

@@ -288,10 +288,10 @@ void test_linear_cell_complex()
 
   // write_back through the adapter moves the vertex attributes
   {
-    typedef CGAL::Hexahedral_mesh_optimization::internal::Hex_mesh_adapter<LCC> Adapter;
-    CGAL::Hexahedral_mesh_optimization::internal::Hex_mesh_arrays a = Adapter::extract(lcc, K());
+    namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+    HMOI::Hex_mesh_arrays a = HMOI::extract_hex_mesh(lcc, K());
     a.points[0] = {0., 0., 0.};
-    Adapter::write_back(a, lcc, K());
+    HMOI::write_back_points(a, lcc, K());
     const CGAL::Hex_mesh_quality fixed = CGAL::hex_mesh_quality(lcc);
     HMO_CHECK(fixed.inverted == 0);
     HMO_CHECK_CLOSE(fixed.msj, 1., 1e-12);

@@ -34,7 +34,6 @@ typedef CGAL::Surface_mesh<Point> Surface;
 typedef CGAL::Indexed_hex_mesh<Point> Mesh;
 typedef CGAL::Linear_cell_complex_for_combinatorial_map<3, 3, CGAL::Linear_cell_complex_traits<3, K> > LCC;
 namespace HMO = CGAL::Hexahedral_mesh_optimization::internal;
-namespace HMP = CGAL::hex_mesh_parameters;
 using HMO::Vec3;
 using HMO::operator+;
 using HMO::operator-;
@@ -148,7 +147,7 @@ void test_box()
   HMO_CHECK(big.summary().find("volume") != std::string::npos);
   // ... which passes with a volume tolerance of 5 %
   HMO_CHECK(CGAL::check_hex_mesh_against_reference(lcc, box_surface(-0.1, 0., 0., 2., 1.5, 1.),
-                                                   HMP::volume_tolerance(0.05)).passed());
+                                                   CGAL::parameters::volume_tolerance(0.05)).passed());
   // a hex mesh reference given as a linear cell complex
   HMO_CHECK(CGAL::check_hex_mesh_against_reference(m, lcc).passed());
 }
@@ -177,7 +176,7 @@ void test_vertex_outside()
   HMO_CHECK(r.hex_mesh_volume > 3.);
   // with a tolerance above 10 % the vertex is still outside but accepted
   const auto tolerant = CGAL::check_hex_mesh_against_reference(
-    m, box, HMP::outside_tolerance(0.2, HMP::volume_tolerance(0.1)));
+    m, box, CGAL::parameters::outside_tolerance(0.2).volume_tolerance(0.1));
   HMO_CHECK(tolerant.vertices_outside == 1 && tolerant.vertices_outside_beyond_tolerance == 0);
   HMO_CHECK(tolerant.passed());
 

@@ -815,14 +815,14 @@ void test_reference_fit()
   // reference's corners, 0.025 √3 / (1.05 √3) = 0.0238 diagonals off)
   HMO_CHECK_CLOSE(grown.max_reference_to_mesh, 0.025 / 1.05, 1e-9);
   const Fit loose = CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}),
-                                                 CGAL::hex_mesh_parameters::surface_tolerance(0.025));
+                                                 CGAL::parameters::surface_tolerance(0.025));
   HMO_CHECK(loose.verdict == Fit::fits);
   // the tolerance is checked as by the three optimisation functions
   for(double bad : {-0.1, 2., std::nan("")})
   {
     bool thrown = false;
     try { CGAL::hex_mesh_reference_fit(mesh, boundary_transformed(1.05, Vec3{0, 0, 0}),
-                                       CGAL::hex_mesh_parameters::surface_tolerance(bad)); }
+                                       CGAL::parameters::surface_tolerance(bad)); }
     catch(const std::invalid_argument& e) { thrown = std::string(e.what()).find("surface_tolerance") != std::string::npos; }
     HMO_CHECK(thrown);
   }

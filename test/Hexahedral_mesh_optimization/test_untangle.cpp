@@ -163,7 +163,7 @@ static void test_unresolved_elements()
   // through the public function, stopped at once by its time limit: every
   // element still inverted is listed
   Mesh stopped = m;
-  const HMO::Optimization_result r = CGAL::untangle_hex_mesh(stopped, CGAL::hex_mesh_parameters::time_limit(1e-9));
+  const HMO::Optimization_result r = CGAL::untangle_hex_mesh(stopped, CGAL::parameters::time_limit(1e-9));
   HMO_CHECK(r.time_limit_reached);
   HMO_CHECK(r.inverted_after > 0 && r.unresolved.size() == r.inverted_after);
   // run to the end, nothing is left and nothing is listed
@@ -437,7 +437,8 @@ HMO_TEST_MAIN(test_untangle)
     m.points[21] = Point(2.7, 2.6, 2.8); // interior vertex (1,1,1) pushed out of its cells
     const Mesh input = m;
     const HMO::Optimization_result r = CGAL::untangle_hex_mesh(
-      m, CGAL::hex_mesh_parameters::barrier_fallback(false, CGAL::parameters::number_of_iterations(0)));
+      m, CGAL::Hexahedral_mesh_optimization::internal::add_internal_parameter(
+               CGAL::parameters::number_of_iterations(0), CGAL::hex_mesh_internal_np::barrier_fallback, false));
     HMO_CHECK(r.inverted_after == r.inverted_before);
     HMO_CHECK(recount_inverted(m) == recount_inverted(input));
     HMO_CHECK(CGAL::hex_mesh_quality(m).msj >= CGAL::hex_mesh_quality(input).msj);

@@ -41,6 +41,7 @@
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
+#include <CGAL/Linear_cell_complex_for_generalized_map.h>
 
 #include <algorithm>
 #include <array>
@@ -80,69 +81,92 @@ std::array<Dart, 6> lcc_hexahedron_faces(LCC& lcc, Dart d)
 }
 
 /// Same as `lcc_hexahedron_faces()`, but checks on the way that the volume
-/// of `d` is a combinatorial hexahedron: six quadrilaterals glued by beta2 as
-/// `make_hexahedron()` glues them. Marks the 24 darts with `mark` (a dart
-/// already marked means the volume is not a hexahedron). Returns false when
-/// it is not one.
+/// of `d` is a combinatorial hexahedron: six quadrilaterals glued as
+/// `make_hexahedron()` glues them. Written with the moves CGAL offers on
+/// both kinds of map (`next`, `previous`, `opposite<2>`: beta1, beta0 and
+/// beta2 of a combinatorial map, alpha01, alpha10 and alpha02 of a
+/// generalized map), so that it walks both. Marks the darts of the volume
+/// with `mark`, both orientations of a generalized map (a dart already
+/// marked means the volume is not a hexahedron). Returns false when it is
+/// not one.
 template <class LCC, class Dart>
 bool lcc_hexahedron_faces_checked(const LCC& lcc, Dart d, std::array<Dart, 6>& f,
                                   typename LCC::size_type mark)
 {
-  auto free2 = [&lcc](Dart x) { return lcc.template is_free<2>(x); };
-  auto is_quad = [&lcc](Dart x) {
-    return !lcc.template is_free<1>(x) && !lcc.template is_free<1>(lcc.beta(x, 1)) &&
-           !lcc.template is_free<1>(lcc.beta(x, 1, 1)) &&
-           !lcc.template is_free<1>(lcc.beta(x, 1, 1, 1)) &&
-           lcc.beta(x, 1, 1, 1, 1) == x;
+  auto nx = [&lcc](Dart x) { return lcc.next(x); };
+  auto pv = [&lcc](Dart x) { return lcc.previous(x); };
+  auto op2 = [&lcc](Dart x) { return lcc.template opposite<2>(x); };
+  auto free2 = [&lcc](Dart x) { return !lcc.template is_opposite_exist<2>(x); };
+  auto is_quad = [&](Dart x) {
+    return lcc.is_next_exist(x) && lcc.is_next_exist(nx(x)) && lcc.is_next_exist(nx(nx(x))) &&
+           lcc.is_next_exist(nx(nx(nx(x)))) && nx(nx(nx(nx(x)))) == x && lcc.is_previous_exist(x);
   };
   if(!is_quad(d))
     return false;
-  // F2, F4, F5, F6 through the beta2 links of F1, then F3
-  if(free2(d) || free2(lcc.beta(d, 1)) || free2(lcc.beta(d, 1, 1)) || free2(lcc.beta(d, 0)))
+  // F2, F4, F5, F6 through the opposite links of F1, then F3
+  if(free2(d) || free2(nx(d)) || free2(nx(nx(d))) || free2(pv(d)))
     return false;
   f[0] = d;
-  f[1] = lcc.beta(d, 1, 1, 2);
-  f[3] = lcc.beta(d, 2, 1, 1);
-  f[4] = lcc.beta(d, 0, 2);
-  f[5] = lcc.beta(d, 1, 2, 1);
+  f[1] = op2(nx(nx(d)));
+  f[3] = nx(nx(op2(d)));
+  f[4] = op2(pv(d));
+  f[5] = nx(op2(nx(d)));
   for(int i : {1, 3, 4, 5})
     if(!is_quad(f[i]))
       return false;
-  if(free2(lcc.beta(f[1], 1, 1)))
+  if(free2(nx(nx(f[1]))))
     return false;
-  f[2] = lcc.beta(f[1], 1, 1, 2);
+  f[2] = op2(nx(nx(f[1])));
   if(!is_quad(f[2]))
     return false;
-  // the remaining beta2 links of make_combinatorial_hexahedron
-  if(lcc.beta(f[2], 2) != lcc.beta(f[1], 1, 1) ||
-     lcc.beta(f[2], 1, 2) != lcc.beta(f[5], 1) ||
-     lcc.beta(f[2], 1, 1, 2) != f[3] ||
-     lcc.beta(f[2], 0, 2) != lcc.beta(f[4], 1, 1) ||
-     lcc.beta(f[5], 2) != lcc.beta(f[3], 1) ||
-     lcc.beta(f[5], 1, 1, 2) != lcc.beta(f[1], 1) ||
-     lcc.beta(f[4], 0, 2) != lcc.beta(f[3], 0) ||
-     lcc.beta(f[4], 1, 2) != lcc.beta(f[1], 0))
+  // the remaining links of make_combinatorial_hexahedron
+  if(op2(f[2]) != nx(nx(f[1])) ||
+     op2(nx(f[2])) != nx(f[5]) ||
+     op2(nx(nx(f[2]))) != f[3] ||
+     op2(pv(f[2])) != nx(nx(f[4])) ||
+     op2(f[5]) != nx(f[3]) ||
+     op2(nx(nx(f[5]))) != nx(f[1]) ||
+     op2(pv(f[4])) != pv(f[3]) ||
+     op2(nx(f[4])) != pv(f[1]))
     return false;
-  // 24 distinct darts
+  // 24 distinct darts (48 in a generalized map)
   for(int i = 0; i < 6; ++i)
   {
     Dart x = f[i];
-    for(int k = 0; k < 4; ++k, x = lcc.beta(x, 1))
+    for(int k = 0; k < 4; ++k, x = nx(x))
     {
       if(lcc.is_marked(x, mark))
         return false;
       lcc.mark(x, mark);
+      const Dart y = lcc.other_orientation(x);
+      if(y != x)
+      {
+        if(lcc.is_marked(y, mark))
+          return false;
+        lcc.mark(y, mark);
+      }
     }
   }
   return true;
 }
 
-/// Walks every 3-cell of `lcc` once, in the order of
-/// `lcc.one_dart_per_cell<3>()` (the order of the first dart of each cell in
-/// `lcc.darts()`), calls `fun(faces)` with the six face darts (F1..F6) of each.
+/// whether `LCC` is based on a generalized map (specialised below)
+template <class LCC>
+struct Is_generalized_map_lcc : std::false_type {};
+
+template <class Traits_, class Items_, class Alloc_,
+          template <unsigned int, class, class, class, class> class GMap, class Storage_>
+struct Is_generalized_map_lcc<Linear_cell_complex_for_generalized_map<3, 3, Traits_, Items_, Alloc_, GMap, Storage_> >
+  : std::true_type {};
+
+/// Walks every 3-cell of `lcc` once, in the order of its first dart in
+/// `lcc.darts()` (for a combinatorial map, the order of
+/// `lcc.one_dart_per_cell<3>()`), calls `fun(faces, dart)` with the six face
+/// darts (F1..F6) of each. A generalized map has two orientations: the walk
+/// starts from the darts of one class (`skip`: the darts of the other).
 /// Returns false, with a message, when a 3-cell is not a hexahedron.
-template <class LCC, class Function>
-bool for_each_lcc_hexahedron(const LCC& lcc, Function fun, std::string* message)
+template <class LCC, class Skip, class Function>
+bool for_each_lcc_hexahedron(const LCC& lcc, Skip skip, Function fun, std::string* message)
 {
   typedef typename LCC::Dart_const_handle Dart;
   const typename LCC::size_type mark = lcc.get_new_mark();
@@ -152,7 +176,7 @@ bool for_each_lcc_hexahedron(const LCC& lcc, Function fun, std::string* message)
   for(auto it = lcc.darts().begin(), end = lcc.darts().end(); it != end; ++it)
   {
     Dart d = it;
-    if(lcc.is_marked(d, mark))
+    if(lcc.is_marked(d, mark) || skip(d))
       continue;
     if(!lcc_hexahedron_faces_checked(lcc, d, faces, mark))
     {
@@ -165,7 +189,7 @@ bool for_each_lcc_hexahedron(const LCC& lcc, Function fun, std::string* message)
       ok = false;
       break;
     }
-    fun(faces);
+    fun(faces, d);
     ++h;
   }
   lcc.unmark_all(mark);
@@ -186,8 +210,48 @@ lcc_vertex_index_map(const LCC& lcc)
   return index;
 }
 
+/// Of a generalized map: the darts at an odd number of alpha moves from the
+/// first dart of their connected component (marked with `odd`), and the
+/// component of each dart, numbered in the order of `lcc.darts()`.
+template <class LCC>
+std::unordered_map<typename LCC::Dart_const_handle, std::size_t>
+gmap_orientation_classes(const LCC& lcc, typename LCC::size_type odd)
+{
+  typedef typename LCC::Dart_const_handle Dart;
+  std::unordered_map<Dart, std::size_t> component;
+  component.reserve(lcc.number_of_darts());
+  std::size_t c = 0;
+  std::vector<Dart> stack;
+  for(auto it = lcc.darts().begin(), end = lcc.darts().end(); it != end; ++it)
+  {
+    if(component.count(it)) continue;
+    component.emplace(it, c);
+    stack.push_back(it);
+    while(!stack.empty())
+    {
+      const Dart x = stack.back();
+      stack.pop_back();
+      const bool x_odd = lcc.is_marked(x, odd);
+      const Dart next[4] = {lcc.template alpha<0>(x), lcc.template alpha<1>(x), lcc.template alpha<2>(x),
+                            lcc.template alpha<3>(x)};
+      for(const Dart y : next)
+      {
+        if(y == x || component.count(y)) continue; // free, or seen
+        component.emplace(y, c);
+        if(!x_odd) lcc.mark(y, odd);
+        stack.push_back(y);
+      }
+    }
+    ++c;
+  }
+  return component;
+}
+
 /// The hexahedra of `lcc` as MEDIT/VTK-ordered vertex indices (vertex i is
-/// the i-th vertex attribute), in 3-cell order.
+/// the i-th vertex attribute), in 3-cell order. In a generalized map, the
+/// orientation of each connected component is the one of its two under
+/// which the sum of the corner Jacobian determinants of its hexahedra is
+/// not negative (a combinatorial map has its orientation in its darts).
 template <class LCC>
 bool lcc_hexahedra(const LCC& lcc, std::vector<std::array<std::size_t, 8> >& hexes,
                    std::string* message)
@@ -206,13 +270,58 @@ bool lcc_hexahedra(const LCC& lcc, std::vector<std::array<std::size_t, 8> >& hex
     }
     return found->second;
   };
-  const bool ok = for_each_lcc_hexahedron(lcc, [&](const std::array<Dart, 6>& f) {
+  auto walk = [&](const std::array<Dart, 6>& f) {
     // m0 = p0, m1 = p1, m2 = p2, m3 = p3, m4 = p5, m5 = p6, m6 = p7, m7 = p4
-    hexes.push_back({vertex(f[0]), vertex(lcc.beta(f[0], 0)), vertex(lcc.beta(f[1], 0)),
-                     vertex(lcc.beta(f[4], 0)), vertex(lcc.beta(f[0], 1)),
-                     vertex(lcc.beta(f[0], 1, 1)), vertex(lcc.beta(f[1], 1, 1)),
-                     vertex(lcc.beta(f[5], 1))});
-  }, message);
+    hexes.push_back({vertex(f[0]), vertex(lcc.previous(f[0])), vertex(lcc.previous(f[1])),
+                     vertex(lcc.previous(f[4])), vertex(lcc.next(f[0])),
+                     vertex(lcc.next(lcc.next(f[0]))), vertex(lcc.next(lcc.next(f[1]))),
+                     vertex(lcc.next(f[5]))});
+  };
+  bool ok = true;
+  if constexpr(!Is_generalized_map_lcc<LCC>::value)
+    ok = for_each_lcc_hexahedron(lcc, [](Dart) { return false; },
+                                 [&](const std::array<Dart, 6>& f, Dart) { walk(f); }, message);
+  else
+  {
+    const typename LCC::size_type odd = lcc.get_new_mark();
+    const auto component = gmap_orientation_classes(lcc, odd);
+    std::vector<std::size_t> hex_component;
+    ok = for_each_lcc_hexahedron(lcc, [&](Dart d) { return lcc.is_marked(d, odd); },
+                                 [&](const std::array<Dart, 6>& f, Dart d) {
+                                   walk(f);
+                                   hex_component.push_back(component.at(d));
+                                 }, message);
+    lcc.unmark_all(odd);
+    lcc.free_mark(odd);
+    if(ok && !missing)
+    {
+      // the orientation of each component: the sign of its total corner determinant
+      typedef typename Kernel_traits<typename LCC::Point>::Kernel Kernel;
+      std::vector<Vec3> points;
+      for(auto it = lcc.vertex_attributes().begin(), end = lcc.vertex_attributes().end(); it != end; ++it)
+        points.push_back(to_vec3(lcc.point_of_vertex_attribute(it), Kernel()));
+      std::vector<double> sum;
+      static const int corner_edges[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
+                                             {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+      for(std::size_t h = 0; h < hexes.size(); ++h)
+      {
+        if(hex_component[h] >= sum.size()) sum.resize(hex_component[h] + 1, 0.);
+        for(int c = 0; c < 8; ++c)
+        {
+          const Vec3& o = points[hexes[h][c]];
+          sum[hex_component[h]] += dot(cross(points[hexes[h][corner_edges[c][0]]] - o,
+                                             points[hexes[h][corner_edges[c][1]]] - o),
+                                       points[hexes[h][corner_edges[c][2]]] - o);
+        }
+      }
+      for(std::size_t h = 0; h < hexes.size(); ++h)
+        if(sum[hex_component[h]] < 0.)
+        {
+          std::swap(hexes[h][1], hexes[h][3]);
+          std::swap(hexes[h][5], hexes[h][7]);
+        }
+    }
+  }
   if(ok && missing)
   {
     if(message)
@@ -497,31 +606,69 @@ bool indexed_hex_mesh_from_linear_cell_complex(const LCC& lcc, Indexed_hex_mesh<
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 
-/// A 3D linear cell complex based on a combinatorial map, read through its
-/// vertex attributes (vertex i = i-th attribute) and its 3-cells.
+/// the points of a linear cell complex, by vertex attribute
+template <class LCC>
+struct Lcc_point_map
+{
+  typedef typename LCC::Vertex_attribute_const_handle key_type;
+  typedef typename LCC::Point value_type;
+  typedef const value_type& reference;
+  typedef boost::read_write_property_map_tag category;
+  friend reference get(const Lcc_point_map&, key_type v) { return v->point(); }
+  /// (the complex is not const when it is written: its attributes are not)
+  friend void put(const Lcc_point_map&, key_type v, const value_type& p) { const_cast<value_type&>(v->point()) = p; }
+};
+
+/// A 3D linear cell complex, based on a combinatorial or a generalized map,
+/// read through its vertex attributes (vertex i = i-th attribute, the key
+/// of its vertex property maps is `Vertex_attribute_const_handle`) and its
+/// 3-cells.
+template <class LCC>
+struct Lcc_hex_mesh_adapter
+{
+  typedef typename LCC::Point Point;
+  typedef typename LCC::Vertex_attribute_const_handle vertex_descriptor;
+  typedef Lcc_point_map<LCC> Default_vertex_point_map;
+
+  static std::vector<vertex_descriptor> vertices(const LCC& lcc)
+  {
+    std::vector<vertex_descriptor> v;
+    v.reserve(lcc.vertex_attributes().size());
+    for(auto it = lcc.vertex_attributes().begin(), end = lcc.vertex_attributes().end(); it != end; ++it)
+      v.push_back(it);
+    return v;
+  }
+  /// throws `std::invalid_argument` if a 3-cell is not a hexahedron
+  static void hexahedra(const LCC& lcc, std::vector<Hex>& hexes)
+  {
+    std::string message;
+    if(!lcc_hexahedra(lcc, hexes, &message))
+      throw std::invalid_argument(message);
+  }
+  static Default_vertex_point_map vertex_point_map(const LCC&) { return Default_vertex_point_map(); }
+};
+
+template <class Traits_, class Items_, class Alloc_,
+          template <unsigned int, class, class, class, class> class CMap, class Storage_>
+struct Is_hex_mesh<Linear_cell_complex_for_combinatorial_map<3, 3, Traits_, Items_, Alloc_, CMap, Storage_> >
+  : std::true_type {};
+
+template <class Traits_, class Items_, class Alloc_,
+          template <unsigned int, class, class, class, class> class GMap, class Storage_>
+struct Is_hex_mesh<Linear_cell_complex_for_generalized_map<3, 3, Traits_, Items_, Alloc_, GMap, Storage_> >
+  : std::true_type {};
+
 template <class Traits_, class Items_, class Alloc_,
           template <unsigned int, class, class, class, class> class CMap, class Storage_>
 struct Hex_mesh_adapter<Linear_cell_complex_for_combinatorial_map<3, 3, Traits_, Items_, Alloc_, CMap, Storage_> >
-{
-  typedef Linear_cell_complex_for_combinatorial_map<3, 3, Traits_, Items_, Alloc_, CMap, Storage_> LCC;
-  typedef typename LCC::Point Point;
+  : Lcc_hex_mesh_adapter<Linear_cell_complex_for_combinatorial_map<3, 3, Traits_, Items_, Alloc_, CMap, Storage_> >
+{};
 
-  /// throws `std::invalid_argument` if a 3-cell is not a hexahedron
-  template <class GeomTraits>
-  static Hex_mesh_arrays extract(const LCC& lcc, const GeomTraits& gt)
-  {
-    return lcc_to_arrays(lcc, gt);
-  }
-
-  template <class GeomTraits>
-  static void write_back(const Hex_mesh_arrays& a, LCC& lcc, const GeomTraits& gt)
-  {
-    std::size_t i = 0;
-    for(auto it = lcc.vertex_attributes().begin(), end = lcc.vertex_attributes().end();
-        it != end && i < a.points.size(); ++it, ++i)
-      lcc.point_of_vertex_attribute(it) = to_point(a.points[i], gt);
-  }
-};
+template <class Traits_, class Items_, class Alloc_,
+          template <unsigned int, class, class, class, class> class GMap, class Storage_>
+struct Hex_mesh_adapter<Linear_cell_complex_for_generalized_map<3, 3, Traits_, Items_, Alloc_, GMap, Storage_> >
+  : Lcc_hex_mesh_adapter<Linear_cell_complex_for_generalized_map<3, 3, Traits_, Items_, Alloc_, GMap, Storage_> >
+{};
 
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization

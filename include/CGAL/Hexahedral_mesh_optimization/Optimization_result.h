@@ -53,7 +53,11 @@ struct Unresolved_element
   /// and the stages' widest regions around it did not free it.
   /// `time_limit`: a hard stop (`time_limit`, or `stop_flag`) fired before
   /// the stages were done.
-  enum Reason { locked, region_exhausted, time_limit };
+  /// `constrained`: one of its inverted frames has every vertex constrained
+  /// by the user (`vertex_is_constrained_map`) or on the boundary, at least
+  /// one constrained: only moving a constrained vertex could free it (this
+  /// reason comes first).
+  enum Reason { locked, region_exhausted, time_limit, constrained };
   Reason reason = region_exhausted;
   std::string details;          ///< which frames are inverted, in words
 };

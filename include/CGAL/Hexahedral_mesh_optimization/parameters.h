@@ -14,18 +14,35 @@
 
 #include <CGAL/license/Hexahedral_mesh_optimization.h>
 
-// The package's own named parameters. CGAL 5.5 offers no way for a package
-// to add chainable member functions to `CGAL::Named_function_parameters`, so
-// each of them is a free function in `CGAL::hex_mesh_parameters` that takes,
-// as an optional last argument, the parameters it is chained to:
+// The package's own named parameters, as CGAL users write them: free
+// functions of `CGAL::parameters` that start a chain, e.g.
 //
 //   CGAL::untangle_hex_mesh(mesh,
-//       CGAL::hex_mesh_parameters::sharp_angle(160.,
-//       CGAL::hex_mesh_parameters::reference_surface(surface,
-//       CGAL::parameters::number_of_iterations(40))));
+//       CGAL::parameters::reference_surface(surface)
+//                        .sharp_angle(160.)
+//                        .number_of_iterations(40)
+//                        .vertex_is_constrained_map(vcm));
 //
-// CGAL's own parameters (geom_traits, number_of_iterations, verbose,
-// visitor) are read as usual.
+// With a stock CGAL 5.5 a chain takes the package's parameters first and
+// CGAL's after them: the member functions of `CGAL::Named_function_parameters`
+// are generated from CGAL's list of parameters
+// (`CGAL/STL_Extension/internal/parameters_interface.h`), which a package
+// cannot extend, so `CGAL::parameters::geom_traits(k).sharp_angle(160.)` does
+// not compile. The package's free functions return a class derived from
+// `CGAL::Named_function_parameters` that adds the package's parameters as
+// member functions: package, package, ..., then CGAL, CGAL, ... all work.
+// With CGAL's list patched by
+// `package_info/Hexahedral_mesh_optimization/parameters_interface.patch`
+// (which defines CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION), the
+// parameters are CGAL's own and every order works.
+//
+// CGAL 5.5's Mesh_3 declares `CGAL::parameters::time_limit` as a
+// Boost.Parameter keyword (CGAL/boost/parameter.h): a translation unit that
+// includes both that header and this one does not compile.
+//
+// The parameters that only tune the schedule are not public: their tags stay
+// in `hex_mesh_internal_np` and only the tool, the Python binding and the
+// benchmark set them, through `internal::add_internal_parameter()`.
 
 #include <CGAL/Named_function_parameters.h>
 
@@ -45,119 +62,134 @@ enum class Method
 
 } // namespace Hexahedral_mesh_optimization
 
+#ifdef CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION
+// CGAL's list knows the public parameters: their tags are CGAL's
+#define CGAL_HMO_PUBLIC_PARAMETER(NAME) using CGAL::internal_np::NAME##_t; using CGAL::internal_np::NAME;
+#else
+#define CGAL_HMO_PUBLIC_PARAMETER(NAME) enum NAME##_t { NAME };
+#endif
+
 namespace hex_mesh_internal_np {
 
-enum reference_surface_t { reference_surface };
-enum sharp_angle_t { sharp_angle };
-enum reference_feature_angle_t { reference_feature_angle };
+// public parameters (free functions of `CGAL::parameters`)
+CGAL_HMO_PUBLIC_PARAMETER(reference_surface)
+CGAL_HMO_PUBLIC_PARAMETER(reference_vertex_point_map)
+CGAL_HMO_PUBLIC_PARAMETER(sharp_angle)
+CGAL_HMO_PUBLIC_PARAMETER(reference_feature_angle)
+CGAL_HMO_PUBLIC_PARAMETER(time_limit)
+CGAL_HMO_PUBLIC_PARAMETER(stop_flag)
+CGAL_HMO_PUBLIC_PARAMETER(target_msj)
+CGAL_HMO_PUBLIC_PARAMETER(surface_tolerance)
+CGAL_HMO_PUBLIC_PARAMETER(method)
+CGAL_HMO_PUBLIC_PARAMETER(volume_tolerance)
+CGAL_HMO_PUBLIC_PARAMETER(outside_tolerance)
+
+// not public API: settings of the schedule, set by the tool, the Python
+// binding and the benchmark through `internal::add_internal_parameter()`
+/// quality stages: creases start only at edges below this dihedral angle and
+/// the edges below `sharp_angle` only continue them (default 180)
 enum crease_seed_angle_t { crease_seed_angle };
+/// quality stages: the turns' ASJ pass reshapes the neighbourhood of the
+/// elements below MSJ + this band (default 0.15)
 enum turn_focus_band_t { turn_focus_band };
+/// weight of the feature-line and corner constraints of Eq. 6 (default 1000)
 enum alpha_t { alpha };
+/// weight of the tangent-plane constraint of Eq. 6 (default 1000)
 enum beta_t { beta };
+/// initial ξ of the minimum target edge length ξ·(mean boundary edge) (default 0.6)
 enum xi_t { xi };
+/// whether α and β may be halved so that the surface relaxes (default true)
 enum relax_surface_t { relax_surface };
+/// local-global iterations per region and round (default 20)
 enum local_iterations_t { local_iterations };
+/// whether the barrier stages run (default true)
 enum barrier_fallback_t { barrier_fallback };
-enum time_limit_t { time_limit };
-enum stop_flag_t { stop_flag };
-enum target_msj_t { target_msj };
-enum surface_tolerance_t { surface_tolerance };
+/// whether the inversion-free pull-back runs when the surface error exceeds the tolerance (default true)
 enum pull_back_t { pull_back };
+/// whether the ASJ smoothing runs (default true)
 enum asj_smoothing_t { asj_smoothing };
+/// whether a valid 1→8 refinement is optimised at a coarse level first
+/// (default true, false with `Method::paper`)
 enum coarse_level_start_t { coarse_level_start };
+/// whether each MSJ stage runs the edge-angle optimiser where the max-min
+/// smoothing falls short (default false, true with `Method::paper`)
 enum edge_angle_stages_t { edge_angle_stages };
-enum method_t { method };
-enum volume_tolerance_t { volume_tolerance };
-enum outside_tolerance_t { outside_tolerance };
-/// not public API: the whole `internal::Optimization_schedule`, replacing
-/// the method's (the benchmark's ablation runs the pipeline without each
-/// stage in turn through it)
+/// the whole `internal::Optimization_schedule`, replacing the method's (the
+/// benchmark's ablation runs the pipeline without each stage in turn through it)
 enum schedule_t { schedule };
 
 } // namespace hex_mesh_internal_np
 
-namespace hex_mesh_parameters {
+#undef CGAL_HMO_PUBLIC_PARAMETER
 
-#define CGAL_HMO_ADD_PARAMETER(NAME)                                                       \
-  template <class K, class T, class Tag, class Base>                                       \
-  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,  \
-                                  CGAL::Named_function_parameters<T, Tag, Base> >          \
-  NAME(const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& base)              \
-  {                                                                                        \
-    return CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t, \
-                                           CGAL::Named_function_parameters<T, Tag, Base> >(k, base); \
-  }                                                                                        \
-  template <class K>                                                                       \
-  CGAL::Named_function_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t,  \
-                                  CGAL::parameters::Default_named_parameters>              \
-  NAME(const K& k)                                                                         \
-  {                                                                                        \
-    return NAME(k, CGAL::parameters::default_values());                                    \
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+/// `np` followed by the parameter `Tag` = `value`: how the tool, the Python
+/// binding and the benchmark set the package's internal parameters
+template <class Tag, class V, class T, class NpTag, class Base>
+CGAL::Named_function_parameters<V, Tag, CGAL::Named_function_parameters<T, NpTag, Base> >
+add_internal_parameter(const CGAL::Named_function_parameters<T, NpTag, Base>& np, Tag, const V& value)
+{
+  return CGAL::Named_function_parameters<V, Tag, CGAL::Named_function_parameters<T, NpTag, Base> >(value, np);
+}
+
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
+
+#ifndef CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION
+
+namespace Hexahedral_mesh_optimization {
+namespace internal {
+
+#define CGAL_HMO_PARAMETER_LIST(X) \
+  X(reference_surface) X(reference_vertex_point_map) X(sharp_angle) X(reference_feature_angle) X(time_limit) X(stop_flag) \
+  X(target_msj) X(surface_tolerance) X(method) X(volume_tolerance) X(outside_tolerance)
+
+/// What the package's free functions of `CGAL::parameters` return: CGAL's
+/// named parameters (every function that takes them takes these), with the
+/// package's parameters as member functions too, so that a chain may go on
+/// with them; a CGAL parameter's member function returns CGAL's own class,
+/// after which only CGAL's parameters chain (see the top of this file).
+template <class T, class Tag, class Base = CGAL::internal_np::No_property>
+struct Hex_mesh_named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
+{
+  typedef CGAL::Named_function_parameters<T, Tag, Base> Cgal_parameters;
+  Hex_mesh_named_parameters(const T& v) : Cgal_parameters(v) {}
+  Hex_mesh_named_parameters(const T& v, const Base& b) : Cgal_parameters(v, b) {}
+
+#define CGAL_HMO_MEMBER(NAME)                                                                    \
+  template <class K>                                                                             \
+  Hex_mesh_named_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t, Cgal_parameters>            \
+  NAME(const K& k) const                                                                         \
+  {                                                                                              \
+    return Hex_mesh_named_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t, Cgal_parameters>(k, *this); \
   }
+  CGAL_HMO_PARAMETER_LIST(CGAL_HMO_MEMBER)
+#undef CGAL_HMO_MEMBER
+};
 
-/// a triangle mesh (model of `FaceListGraph`, e.g. `Surface_mesh`) the
-/// boundary must stay on; default: the input's own boundary
-CGAL_HMO_ADD_PARAMETER(reference_surface)
-/// θ in degrees: boundary edges with a smaller dihedral angle are features (default 165)
-CGAL_HMO_ADD_PARAMETER(sharp_angle)
-/// with a reference surface: the dihedral angle below which its edges are
-/// creases that the mesh boundary recovers (default 150; 0: no recovery)
-CGAL_HMO_ADD_PARAMETER(reference_feature_angle)
-/// quality stages: creases start only at edges below this dihedral angle and
-/// the edges below `sharp_angle` only continue them (default 180: every edge
-/// below `sharp_angle` is a crease)
-CGAL_HMO_ADD_PARAMETER(crease_seed_angle)
-/// quality stages: the turns' ASJ pass reshapes the neighbourhood of the
-/// elements below MSJ + this band (default 0.15; 0.2 reaches a higher MSJ
-/// for more time)
-CGAL_HMO_ADD_PARAMETER(turn_focus_band)
-/// weight of the feature-line and corner constraints of Eq. 6 (default 1000)
-CGAL_HMO_ADD_PARAMETER(alpha)
-/// weight of the tangent-plane constraint of Eq. 6 (default 1000)
-CGAL_HMO_ADD_PARAMETER(beta)
-/// initial ξ of the minimum target edge length ξ·(mean boundary edge) (default 0.6)
-CGAL_HMO_ADD_PARAMETER(xi)
-/// whether α and β may be halved so that the surface relaxes (default true)
-CGAL_HMO_ADD_PARAMETER(relax_surface)
-/// local-global iterations per region and round (default 20)
-CGAL_HMO_ADD_PARAMETER(local_iterations)
-/// whether the barrier stages run, with the boundary fixed before the edge-angle stage and on what it left (default true)
-CGAL_HMO_ADD_PARAMETER(barrier_fallback)
-/// hard stop in seconds of wall-clock time (default: none); decides nothing else
-CGAL_HMO_ADD_PARAMETER(time_limit)
-/// a `const std::atomic<bool>*` that another thread or a signal handler may
-/// set: the run then stops at its next safe point, as for `time_limit`, and
-/// the result's `interrupted` is true (default: none)
-CGAL_HMO_ADD_PARAMETER(stop_flag)
-/// the MSJ the quality stages aim at; 1 (default): as high as they get it
-CGAL_HMO_ADD_PARAMETER(target_msj)
-/// largest surface error (relative to the reference's bounding-box diagonal)
-/// the quality stages may cause by moving boundary vertices (default 0.005)
-CGAL_HMO_ADD_PARAMETER(surface_tolerance)
-/// whether the inversion-free pull-back runs when the surface error exceeds the tolerance (default true)
-CGAL_HMO_ADD_PARAMETER(pull_back)
-/// whether the final ASJ smoothing runs (default true)
-CGAL_HMO_ADD_PARAMETER(asj_smoothing)
-/// whether a valid mesh recognised as a 1→8 refinement is optimised at a
-/// coarse level first (default true, false with `Method::paper`)
-CGAL_HMO_ADD_PARAMETER(coarse_level_start)
-/// whether each MSJ stage runs the paper's edge-angle optimiser where the
-/// max-min smoothing falls short (default: false, true with `Method::paper`)
-CGAL_HMO_ADD_PARAMETER(edge_angle_stages)
-/// `Hexahedral_mesh_optimization::Method::package` (default) or `Method::paper`
-CGAL_HMO_ADD_PARAMETER(method)
-/// largest relative difference between the volume of the hex mesh and the
-/// volume bounded by the reference that `check_hex_mesh_against_reference()`
-/// accepts (default 0.01)
-CGAL_HMO_ADD_PARAMETER(volume_tolerance)
-/// distance, as a fraction of the reference's bounding-box diagonal, beyond
-/// which a vertex outside the reference volume makes
-/// `check_hex_mesh_against_reference()` fail (default 0.01)
-CGAL_HMO_ADD_PARAMETER(outside_tolerance)
+} // namespace internal
+} // namespace Hexahedral_mesh_optimization
 
-#undef CGAL_HMO_ADD_PARAMETER
+namespace parameters {
 
-} // namespace hex_mesh_parameters
+#define CGAL_HMO_FREE_FUNCTION(NAME)                                                             \
+  template <class K>                                                                             \
+  Hexahedral_mesh_optimization::internal::Hex_mesh_named_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t> \
+  NAME(const K& k)                                                                               \
+  {                                                                                              \
+    return Hexahedral_mesh_optimization::internal::Hex_mesh_named_parameters<K, CGAL::hex_mesh_internal_np::NAME##_t>(k); \
+  }
+CGAL_HMO_PARAMETER_LIST(CGAL_HMO_FREE_FUNCTION)
+#undef CGAL_HMO_FREE_FUNCTION
+
+} // namespace parameters
+
+#undef CGAL_HMO_PARAMETER_LIST
+
+#endif // CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION
+
 } // namespace CGAL
 
 #endif // CGAL_HEXAHEDRAL_MESH_OPTIMIZATION_PARAMETERS_H

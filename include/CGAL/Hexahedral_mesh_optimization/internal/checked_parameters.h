@@ -21,7 +21,12 @@
 
 #include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 
+#include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
+
+#include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
+
+#include <boost/property_map/property_map.hpp>
 
 #include <limits>
 #include <sstream>
@@ -60,6 +65,66 @@ double surface_tolerance_parameter(const NamedParameters& np)
     "surface_tolerance",
     parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
 }
+
+/// CGAL's named parameters of a model of `HexMesh`: `vertex_point_map`
+/// (default: the mesh's own points), `geom_traits` (default: the kernel of
+/// the map's point type) and `vertex_is_constrained_map` (default: none)
+template <class HexMesh, class NamedParameters>
+struct Hex_mesh_parameters
+{
+  typedef Hex_mesh_adapter<HexMesh> Adapter;
+  typedef typename CGAL::internal_np::Lookup_named_param_def<
+    CGAL::internal_np::vertex_point_t, NamedParameters, typename Adapter::Default_vertex_point_map>::type Vertex_point_map;
+  typedef typename boost::property_traits<Vertex_point_map>::value_type Point;
+  typedef typename CGAL::internal_np::Lookup_named_param_def<
+    CGAL::internal_np::geom_traits_t, NamedParameters, typename Kernel_traits<Point>::Kernel>::type Geom_traits;
+
+  static Vertex_point_map vertex_point_map(const HexMesh& mesh, const NamedParameters& np)
+  {
+    return parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                        Adapter::vertex_point_map(mesh));
+  }
+  static Geom_traits geom_traits(const NamedParameters& np)
+  {
+    return parameters::choose_parameter<Geom_traits>(parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  }
+  /// the flat arrays of `mesh`, through the point map and the traits of `np`
+  static Hex_mesh_arrays extract(const HexMesh& mesh, const NamedParameters& np)
+  {
+    Hex_mesh_arrays a = extract_hex_mesh(mesh, vertex_point_map(mesh, np), geom_traits(np));
+    a.constrained = constrained_mask(mesh, np);
+    return a;
+  }
+  /// vertex i constrained (`vertex_is_constrained_map`): 1; empty when no
+  /// vertex is
+  static std::vector<unsigned char> constrained_mask(const HexMesh& mesh, const NamedParameters& np)
+  {
+    return constrained_mask(mesh, parameters::get_parameter(np, CGAL::internal_np::vertex_is_constrained));
+  }
+  /// writes back the vertices that moved (see `write_back_moved()`)
+  static void write_back(const Hex_mesh_arrays& a, const std::vector<Vec3>& before, HexMesh& mesh,
+                         const NamedParameters& np)
+  {
+    write_back_moved(a, before, mesh, vertex_point_map(mesh, np), geom_traits(np));
+  }
+
+private:
+  static std::vector<unsigned char> constrained_mask(const HexMesh&, CGAL::internal_np::Param_not_found)
+  {
+    return std::vector<unsigned char>();
+  }
+  template <class VertexIsConstrainedMap>
+  static std::vector<unsigned char> constrained_mask(const HexMesh& mesh, const VertexIsConstrainedMap& vcm)
+  {
+    const auto vertices = Adapter::vertices(mesh);
+    std::vector<unsigned char> mask(vertices.size(), 0);
+    bool any = false;
+    for(std::size_t i = 0; i < vertices.size(); ++i)
+      if(get(vcm, vertices[i])) { mask[i] = 1; any = true; }
+    if(!any) mask.clear();
+    return mask;
+  }
+};
 
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization

@@ -49,7 +49,7 @@ public:
 
   /// \pre fewer than 2^32 vertices and 2^28 hexes (12 edges each: the 32-bit indices inside)
   explicit Hex_mesh_topology(const Hex_mesh_arrays& m)
-    : m_nv(m.points.size()), m_hexes(m.hexes)
+    : m_nv(m.points.size()), m_hexes(m.hexes), m_constrained(m.constrained)
   {
     if(m_nv >= (std::size_t(1) << 32) || m_hexes.size() >= (std::size_t(1) << 28))
       throw std::length_error("Hex_mesh_topology: more than 2^32 vertices or 2^28 hexahedra");
@@ -81,6 +81,10 @@ public:
   int edge_valence(std::size_t e) const { return m_edge_valence[e]; }
 
   bool is_boundary_vertex(std::size_t v) const { return m_boundary_vertex[v] != 0; }
+  /// whether v may not move (`Hex_mesh_arrays::constrained`, the user's
+  /// `vertex_is_constrained_map`): every stage asks this
+  bool is_constrained(std::size_t v) const { return !m_constrained.empty() && m_constrained[v] != 0; }
+  bool has_constrained_vertices() const { return !m_constrained.empty(); }
   bool is_boundary_edge(std::size_t e) const { return m_boundary_edge[e] != 0; }
   /// boundary quads, oriented outward for positively oriented hexes, sorted
   const std::vector<std::array<std::size_t, 4> >& boundary_faces() const { return m_boundary_faces; }
@@ -321,6 +325,7 @@ private:
 
   std::size_t m_nv;
   std::vector<Hex> m_hexes;
+  std::vector<unsigned char> m_constrained;
   std::vector<std::size_t> m_vh_off;
   std::vector<Corner> m_vh;
   std::vector<std::array<std::size_t, 2> > m_edges;

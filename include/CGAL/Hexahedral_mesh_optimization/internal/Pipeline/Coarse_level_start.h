@@ -71,7 +71,9 @@ bool coarse_level_start(Hex_mesh_arrays& mesh, const Quality_settings& s, Visito
                         Quality_settings& fine_settings, Optimization_result& result)
 {
   const Optimization_schedule& sc = s.schedule;
-  if(!sc.coarse_level_start) return false;
+  // (the fine vertices follow the coarse level's displacement carried down:
+  // with constrained vertices the stages start from the fine mesh itself)
+  if(!sc.coarse_level_start || mesh.has_constrained_vertices()) return false;
   const auto start_time = std::chrono::steady_clock::now();
   const Quality_statistics q0 = quality_statistics(mesh);
   if(q0.inverted > 0) return false;

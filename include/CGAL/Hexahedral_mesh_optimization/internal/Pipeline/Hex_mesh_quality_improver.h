@@ -107,6 +107,8 @@ struct Quality_settings
   /// optional reference surface (model coordinates); default: the boundary of `original`
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
+  /// edges of the reference given as creases (`edge_is_constrained_map`)
+  const std::vector<std::array<std::size_t, 2> >* reference_creases = nullptr;
 
   /// the MSJ the stages aim at: the target, but never above
   /// `Optimization_schedule::excellent_msj`
@@ -168,6 +170,7 @@ public:
 
     Run_state st(mesh, res);
     set_up(st, original);
+    const std::vector<Vec3> normalized_input = mesh.points;
     if(m_s.pull_back && !stopped()) pull_back_stage(st); // around what is inverted, if anything (see Pull_back.h)
     if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
     if(!stopped()) surface_guard_set_up(st, original);
@@ -177,7 +180,9 @@ public:
     if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
     if(m_s.schedule.final_projection && !stopped()) final_projection_stage(st);
 
+    const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = st.nz.undo(p);
+    restore_unmoved_vertices(mesh.points, normalized, normalized_input, input_points, mesh);
 
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);
@@ -234,7 +239,11 @@ private:
     // untangler smoothed what needed it, and smoothing a valid boundary only
     // moves the anchors of its corners and feature vertices away from it
     tsp.smoothing_iterations = 0;
-    if(user_reference()) tsp.reference_feature_angle = m_s.reference_feature_angle;
+    if(user_reference())
+    {
+      tsp.reference_feature_angle = m_s.reference_feature_angle;
+      if(m_s.reference_creases) tsp.reference_creases = *m_s.reference_creases;
+    }
     st.ts.reset(new Target_surface(st.mesh, st.topo->boundary(), m_target_points, m_target_tris, tsp));
     if(st.ts->feature_recovery_summary().attempted)
       report_event(st, "feature recovery", describe(st.ts->feature_recovery_summary()), true);

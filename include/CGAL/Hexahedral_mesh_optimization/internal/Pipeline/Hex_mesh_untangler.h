@@ -77,6 +77,8 @@ struct Untangle_settings
   /// optional reference surface (triangle soup, model coordinates)
   const std::vector<Vec3>* reference_points = nullptr;
   const std::vector<Tri>* reference_triangles = nullptr;
+  /// edges of the reference given as creases (`edge_is_constrained_map`)
+  const std::vector<std::array<std::size_t, 2> >* reference_creases = nullptr;
 };
 
 /// `region` without what keeps the barrier at ε = 0 from starting: the
@@ -246,6 +248,7 @@ public:
     const Hex_mesh_topology topo(mesh);
     const Normalization nz = normalization(topo, mesh.points);
     for(Vec3& p : mesh.points) p = nz.apply(p);
+    const std::vector<Vec3> normalized_input = mesh.points;
 
     Target_surface_parameters tsp;
     tsp.feature_angle = m_s.sharp_angle;
@@ -256,6 +259,7 @@ public:
       rp.reserve(m_s.reference_points->size());
       for(const Vec3& p : *m_s.reference_points) rp.push_back(nz.apply(p));
       tsp.reference_feature_angle = m_s.reference_feature_angle;
+      if(m_s.reference_creases) tsp.reference_creases = *m_s.reference_creases;
       ts.reset(new Target_surface(mesh, topo.boundary(), rp, *m_s.reference_triangles, tsp));
     }
     else
@@ -281,7 +285,9 @@ public:
     if(sc.surface_stage && !stopped())
       surface_stage(topo, *ts, mesh, res);
 
+    const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = nz.undo(p);
+    restore_unmoved_vertices(mesh.points, normalized, normalized_input, input_points, mesh);
 
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);

@@ -75,6 +75,23 @@ inline Ideal_angles ideal_angles_on_target(const Hex_mesh_topology& topo, const 
                       }));
 }
 
+/// Once the normalisation is undone (`points`): a vertex whose normalised
+/// position is still its normalised input position (`normalized_input`)
+/// gets its input position (`input`) back exactly, as undoing the
+/// normalisation rounds it, so that only the vertices the stages moved
+/// differ from the input (the caller writes back only those: the others
+/// keep their exact coordinates). A constrained vertex gets its input
+/// position back too: the stages never move one (they ask
+/// `Hex_mesh_topology::is_constrained()`), and this makes it so whatever
+/// a stage did; `keep_input_if_worse()` comes after.
+inline void restore_unmoved_vertices(std::vector<Vec3>& points, const std::vector<Vec3>& normalized,
+                                     const std::vector<Vec3>& normalized_input, const std::vector<Vec3>& input,
+                                     const Hex_mesh_arrays& mesh)
+{
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(normalized[v] == normalized_input[v] || mesh.is_constrained(v)) points[v] = input[v];
+}
+
 /// If `mesh` is worse than the input (positions `input_points`, the same
 /// hexes: the stages never change them; quality `before`), puts the input
 /// positions back and sets `res.kept_input`; fills the "after" figures and the certificate

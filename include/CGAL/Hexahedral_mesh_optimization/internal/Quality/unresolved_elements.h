@@ -22,7 +22,10 @@
 // vertices (a corner and its three edge neighbours) or on all 8 (the
 // centre). An inverted frame whose vertices are all on the boundary is
 // "locked": the interior vertices cannot change it, only a move of the
-// surface can, and the stages hold the surface within the tolerance.
+// surface can, and the stages hold the surface within the tolerance. One
+// whose vertices are all constrained by the user or on the boundary, one at
+// least constrained, is "constrained": only moving a vertex the user
+// constrained could change it.
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
@@ -56,30 +59,50 @@ inline std::vector<Unresolved_element> unresolved_elements(const Hex_mesh_arrays
     Unresolved_element e;
     e.hex = h;
     e.scaled_jacobian = scaled_jacobian(p);
-    std::ostringstream frames, locked_frames;
-    int locked = 0;
+    std::ostringstream frames, locked_frames, constrained_frames;
+    int locked = 0, constrained = 0;
     for(int i = 0; i < 9; ++i)
     {
       if(!is_inverted(s[i])) continue;
-      bool all_on_boundary = true;
+      // the vertices of the frame: a corner and its three edge neighbours, or all 8
+      std::vector<std::size_t> frame;
       if(i < 8)
       {
-        all_on_boundary = boundary.is_boundary_vertex(hx[i]);
-        for(int k = 0; k < 3; ++k) all_on_boundary = all_on_boundary && boundary.is_boundary_vertex(hx[hex_corner_edges[i][k]]);
+        frame.push_back(hx[i]);
+        for(int k = 0; k < 3; ++k) frame.push_back(hx[hex_corner_edges[i][k]]);
       }
       else
-        for(int k = 0; k < 8; ++k) all_on_boundary = all_on_boundary && boundary.is_boundary_vertex(hx[k]);
+        frame.assign(hx.begin(), hx.end());
+      bool all_on_boundary = true, all_held = true, any_constrained = false;
+      for(std::size_t v : frame)
+      {
+        all_on_boundary = all_on_boundary && boundary.is_boundary_vertex(v);
+        all_held = all_held && (boundary.is_boundary_vertex(v) || mesh.is_constrained(v));
+        any_constrained = any_constrained || mesh.is_constrained(v);
+      }
       std::ostringstream name;
       if(i < 8) name << "corner " << i << " (vertex " << hx[i] << ")";
       else name << "centre";
       frames << (frames.tellp() > 0 ? ", " : "") << name.str() << " " << s[i];
-      if(all_on_boundary)
+      if(all_held && any_constrained)
+      {
+        constrained_frames << (constrained ? ", " : "") << name.str();
+        ++constrained;
+      }
+      else if(all_on_boundary)
       {
         locked_frames << (locked ? ", " : "") << name.str();
         ++locked;
       }
     }
-    if(locked > 0)
+    if(constrained > 0)
+    {
+      e.reason = Unresolved_element::constrained;
+      e.details = "constrained: the inverted frame of " + constrained_frames.str() +
+                  " has all its vertices constrained or on the boundary: only moving a constrained vertex can free it"
+                  "; inverted frames: " + frames.str();
+    }
+    else if(locked > 0)
     {
       e.reason = Unresolved_element::locked;
       e.details = "locked: the inverted frame of " + locked_frames.str() +

@@ -474,6 +474,7 @@ private:
     m_kind.assign(nv, FREE);
     for(std::size_t v = 0; v < nv; ++v)
     {
+      if(m_topo.is_constrained(v)) { m_kind[v] = FIXED; continue; } // the user's constrained vertices
       if(!m_topo.is_boundary_vertex(v)) continue;
       m_kind[v] = FIXED;
       if(boundary_moves && m_target->vertex_class(v) == Vertex_class::regular) m_kind[v] = ON_SURFACE;
@@ -487,7 +488,8 @@ private:
       {
         if(!l.closed && (j == 0 || j + 1 == n)) continue;
         const std::size_t v = m_target->boundary().vertices[l.vertices[j]];
-        if(m_target->vertex_class(v) != Vertex_class::sharp || !m_topo.is_boundary_vertex(v)) continue;
+        if(m_target->vertex_class(v) != Vertex_class::sharp || !m_topo.is_boundary_vertex(v) ||
+           m_topo.is_constrained(v)) continue;
         m_line[v] = {m_target->boundary().vertices[l.vertices[(j + n - 1) % n]],
                      m_target->boundary().vertices[l.vertices[(j + 1) % n]]};
         m_kind[v] = ON_LINE;

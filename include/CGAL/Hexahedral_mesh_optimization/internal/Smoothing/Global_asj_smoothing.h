@@ -233,7 +233,7 @@ private:
     m_free.clear();
     for(std::size_t v = 0; v < nv; ++v)
     {
-      if(m_topo.is_boundary_vertex(v)) continue;
+      if(m_topo.is_boundary_vertex(v) || m_topo.is_constrained(v)) continue;
       bool free = true;
       for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v) && free; ++c)
         free = !near_floor[c->hex];

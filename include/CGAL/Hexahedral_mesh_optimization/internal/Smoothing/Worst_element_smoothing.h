@@ -263,7 +263,7 @@ public:
     for(std::size_t i = 0; i < low.size(); ++i)
       for(std::size_t v : m_topo.hexes()[low[i]])
       {
-        if(m_topo.is_boundary_vertex(v)) continue;
+        if(m_topo.is_boundary_vertex(v) || m_topo.is_constrained(v)) continue;
         const auto ins = first_at.emplace(v, i);
         if(!ins.second)
         {
@@ -289,7 +289,7 @@ public:
       std::vector<std::size_t> verts;
       for(std::size_t h : hexes)
         for(std::size_t v : m_topo.hexes()[h])
-          if(!m_topo.is_boundary_vertex(v)) verts.push_back(v);
+          if(!m_topo.is_boundary_vertex(v) && !m_topo.is_constrained(v)) verts.push_back(v);
       std::sort(verts.begin(), verts.end());
       verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
       const double length = mean_edge_length(points, hexes);
@@ -484,7 +484,8 @@ private:
   std::size_t improve_element(std::vector<Vec3>& points, std::size_t h, std::vector<double>& sj) const
   {
     std::vector<std::size_t> verts;
-    for(std::size_t v : m_topo.hexes()[h]) if(!m_topo.is_boundary_vertex(v)) verts.push_back(v);
+    for(std::size_t v : m_topo.hexes()[h])
+      if(!m_topo.is_boundary_vertex(v) && !m_topo.is_constrained(v)) verts.push_back(v);
     return move_together(points, verts, mean_edge_length(points, std::vector<std::size_t>(1, h)), sj);
   }
 
@@ -637,6 +638,7 @@ private:
   /// up to `steps` ascent steps on vertex v; returns the number accepted
   std::size_t improve_vertex(std::vector<Vec3>& points, std::size_t v, std::vector<double>& sj, int steps) const
   {
+    if(m_topo.is_constrained(v)) return 0; // the user's constrained vertices never move
     const Vertex_class cls = m_target ? m_target->vertex_class(v)
                                       : (m_topo.is_boundary_vertex(v) ? Vertex_class::corner : Vertex_class::interior);
     const bool guarded = cls != Vertex_class::interior && m_guarded;

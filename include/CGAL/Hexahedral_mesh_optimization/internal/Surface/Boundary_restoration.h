@@ -103,7 +103,7 @@ inline Boundary_restoration_report restore_boundary(const Hex_mesh_topology& top
     for(std::size_t v : boundary_vertices)
     {
       const double d = squared_norm(home[v] - points[v]);
-      if(active[v] && d > s.home_distance * s.home_distance) order.push_back({-d, v});
+      if(active[v] && d > s.home_distance * s.home_distance && !topo.is_constrained(v)) order.push_back({-d, v});
     }
     if(order.empty()) break;
     std::sort(order.begin(), order.end());

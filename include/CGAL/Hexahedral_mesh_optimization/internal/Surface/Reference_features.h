@@ -55,6 +55,8 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -282,13 +284,17 @@ inline void mark_turns(const Mesh& m, const std::vector<unsigned char>& sharp,
 /// The feature curves and corners of the reference surface given as a
 /// triangle soup (see the top of this file). `min_length`: the shortest
 /// dangling or closed curve kept; `clear_margin`: see "Clear features" at
-/// the top of this file (0: not checked).
+/// the top of this file (0: not checked). `given_creases`: edges of the
+/// reference (pairs of indices into `points`) the user gave as features
+/// (CGAL's `edge_is_constrained_map`): they are sharp whatever their angle,
+/// are never dropped as fragments, and make the reference's features clear.
 inline Reference_features detect_reference_features(const std::vector<Vec3>& points,
                                                     const std::vector<Tri>& triangles,
                                                     double feature_angle,
                                                     double corner_turn,
                                                     double min_length,
-                                                    double clear_margin)
+                                                    double clear_margin,
+                                                    const std::vector<std::array<std::size_t, 2> >& given_creases = {})
 {
   using namespace reference_features_detail;
   Reference_features rf;
@@ -296,6 +302,22 @@ inline Reference_features detect_reference_features(const std::vector<Vec3>& poi
   rf.polygon_mesh = to_surface_mesh(points, triangles, m);
   if(!rf.polygon_mesh) return rf;
   std::vector<unsigned char> sharp = sharp_edges(m, feature_angle);
+  // the given creases, found by their end points (the polygon mesh may have
+  // duplicated vertices of the soup)
+  std::vector<unsigned char> given(m.number_of_edges(), 0);
+  if(!given_creases.empty())
+  {
+    std::set<std::pair<Vec3, Vec3> > ends;
+    for(const auto& e : given_creases)
+      if(e[0] < points.size() && e[1] < points.size())
+        ends.insert(std::minmax(points[e[0]], points[e[1]]));
+    auto vec3 = [&m](Vertex v) { const auto& p = m.point(v); return Vec3{p.x(), p.y(), p.z()}; };
+    for(Edge e : m.edges())
+      if(ends.count(std::minmax(vec3(m.source(m.halfedge(e))), vec3(m.target(m.halfedge(e))))))
+        given[std::size_t(e)] = 1;
+  }
+  const bool any_given = std::count(given.begin(), given.end(), 1) > 0;
+  for(std::size_t e = 0; e < sharp.size(); ++e) sharp[e] = sharp[e] || given[e];
   const auto count = [](const std::vector<unsigned char>& f) { return std::size_t(std::count(f.begin(), f.end(), 1)); };
   rf.sharp_edges = count(sharp);
   if(clear_margin > 0.)
@@ -303,7 +325,12 @@ inline Reference_features detect_reference_features(const std::vector<Vec3>& poi
     // features at all only when most edges sharp at θ are sharp at θ − margin
     rf.clearly_sharp_edges = count(sharp_edges(m, feature_angle - clear_margin));
     rf.clear = 2 * rf.clearly_sharp_edges >= rf.sharp_edges;
-    if(!rf.clear) return rf;
+    if(!rf.clear && !any_given) return rf;
+    if(!rf.clear) // no clear creases of its own: the given ones only
+    {
+      sharp = given;
+      rf.clear = true;
+    }
   }
 
   std::vector<Chain> cs;
@@ -322,6 +349,9 @@ inline Reference_features detect_reference_features(const std::vector<Vec3>& poi
       const bool dangling = c.closed || degree[std::size_t(c.vertices.front())] == 1
                                      || degree[std::size_t(c.vertices.back())] == 1;
       if(!dangling || length_of(m, c) >= min_length) continue;
+      bool has_given = false;
+      for(Edge e : c.edges) has_given = has_given || given[std::size_t(e)];
+      if(has_given) continue;
       for(Edge e : c.edges) sharp[std::size_t(e)] = 0;
       removed = true;
     }

@@ -163,7 +163,8 @@ public:
       if(time_limit_reached(m_s.time_limit)) break;
       std::vector<std::pair<double, std::size_t> > order;
       for(std::size_t v : m_b.vertices)
-        if(error[v] > m_s.aim && m_ts.vertex_class(v) != Vertex_class::corner) order.push_back({-error[v], v});
+        if(error[v] > m_s.aim && m_ts.vertex_class(v) != Vertex_class::corner && !m_topo.is_constrained(v))
+          order.push_back({-error[v], v});
       if(order.empty()) break;
       std::sort(order.begin(), order.end());
       ++rep.sweeps;

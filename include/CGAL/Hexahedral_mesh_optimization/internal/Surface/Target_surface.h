@@ -170,6 +170,9 @@ struct Target_surface_parameters
   /// sharp at `reference_feature_angle` are still sharp at that angle minus
   /// this many degrees (Reference_features.h; 0: not checked)
   double reference_feature_clear_margin = 30.;
+  /// edges of the reference (pairs of indices into its points) given as
+  /// creases by the user (`edge_is_constrained_map`), added to those found
+  std::vector<std::array<std::size_t, 2> > reference_creases;
   Feature_recovery_parameters recovery;
 };
 
@@ -252,6 +255,7 @@ public:
     triangulate_boundary(boundary_, mesh.points, Quad_split::both_diagonals, sp, st);
     build_reference(sp, st);
     compute_target(mesh);
+    pin_constrained_vertices(mesh);
   }
 
   /// Reference = a triangle soup (scenario 1 of Section 3.1), any orientation.
@@ -273,6 +277,7 @@ public:
     CGAL_precondition(boundary.boundary_index.size() == mesh.number_of_vertices());
     build_reference(reference_points, reference_triangles);
     compute_target(mesh);
+    pin_constrained_vertices(mesh);
   }
 
   // the AABB tree refers into `ref_triangles_`: no copies
@@ -569,6 +574,20 @@ private:
   /// Ω_t (Section 3.1): the boundary smoothed along its surface and its
   /// feature lines, projected onto the reference; then its classification,
   /// feature lines and outward normals
+  /// A boundary vertex the user constrained (`Hex_mesh_arrays::constrained`)
+  /// is a corner whose Ω_t position is where it is: every constraint,
+  /// projection and snap onto the target then leaves it in place.
+  void pin_constrained_vertices(const Hex_mesh_arrays& mesh)
+  {
+    for(std::size_t bi = 0; bi < boundary_.vertices.size(); ++bi)
+    {
+      const std::size_t v = boundary_.vertices[bi];
+      if(!mesh.is_constrained(v)) continue;
+      classes_[v] = Vertex_class::corner;
+      omega_[bi] = mesh.points[v];
+    }
+  }
+
   void compute_target(const Hex_mesh_arrays& mesh)
   {
     const std::vector<Vec3>& mesh_points = mesh.points;
@@ -750,7 +769,8 @@ private:
     const std::size_t nb = boundary_.vertices.size();
     const double h = mean_boundary_edge([&mesh_points](std::size_t v) { return mesh_points[v]; });
     const Reference_features rf = detect_reference_features(ref_points_, ref_tris_, param_.reference_feature_angle,
-      param_.crease_continuation_turn, param_.min_reference_feature_length * h, param_.reference_feature_clear_margin);
+      param_.crease_continuation_turn, param_.min_reference_feature_length * h, param_.reference_feature_clear_margin,
+      param_.reference_creases);
     summary_ = Feature_recovery_summary();
     summary_.attempted = true;
     summary_.sharp_edges = rf.sharp_edges;

@@ -65,11 +65,12 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
     front.swap(next);
   }
 
-  // a vertex is free when every hex around it is in the region
+  // a vertex is free when every hex around it is in the region and the
+  // user did not constrain it
   std::vector<char> free_vertex(nv, 0);
   for(std::size_t v = 0; v < nv; ++v)
   {
-    bool all = topo.vertex_corners_begin(v) != topo.vertex_corners_end(v);
+    bool all = topo.vertex_corners_begin(v) != topo.vertex_corners_end(v) && !topo.is_constrained(v);
     for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v) && all; ++c)
       all = in_region[c->hex] != 0;
     free_vertex[v] = all ? 1 : 0;

@@ -345,6 +345,9 @@ private:
       if(sj > 0.) m_valid_min_sj = (std::min)(m_valid_min_sj, sj);
       else for(std::size_t v : h) m_pinned[v] = 1;
     }
+    // the user's constrained vertices never move either
+    for(std::size_t v = 0; v < points.size(); ++v)
+      if(m_topo.is_constrained(v)) m_pinned[v] = 1;
   }
 
   /// SLIM iterations in the current region until the target is reached, the
