@@ -35,6 +35,30 @@ enum class Method
   paper
 };
 
+/// The parameters of one published run of the paper (named parameter
+/// `paper_recipe`, read with `Method::paper` only; other named parameters
+/// given explicitly take precedence). The defaults are the generic recipe of
+/// the authors' scripts; the per-model ones of the paper's Table 1 are in
+/// the benchmark and the user manual.
+struct Paper_recipe
+{
+  /// θ in degrees while untangling (the named parameter `sharp_angle`
+  /// overrides it), and in the MSJ stages (0: the same)
+  double sharp_angle = 165., msj_sharp_angle = 0.;
+  /// untangling: α, β, ξ at the start (ξ falls by 0.1 to 0.2, then α, β are halved)
+  double alpha = 1000., beta = 1000., xi = 0.6;
+  /// untangling on the whole mesh at once (the global variant) instead of local regions
+  bool global = false;
+  /// the SLIM pull-back toward the input's vertices runs when α ended below this (0: never)
+  double pull_back_below_alpha = 500.;
+  int pull_back_iterations = 20;
+  /// MSJ stages: the target, reached in steps of 0.1 up to 0.4 and of 0.05
+  /// above (`msj_in_steps`) or in one stage; α, β, ξ
+  double target_msj = 1.;
+  bool msj_in_steps = true;
+  double msj_alpha = 1000., msj_beta = 1000., msj_xi = 0.6;
+};
+
 } // namespace Hexahedral_mesh_optimization
 
 namespace hex_mesh_internal_np {
@@ -59,6 +83,7 @@ enum asj_smoothing_t { asj_smoothing };
 enum coarse_level_start_t { coarse_level_start };
 enum edge_angle_stages_t { edge_angle_stages };
 enum method_t { method };
+enum paper_recipe_t { paper_recipe };
 enum volume_tolerance_t { volume_tolerance };
 enum outside_tolerance_t { outside_tolerance };
 /// not public API: the whole `internal::Optimization_schedule`, replacing
@@ -138,6 +163,8 @@ CGAL_HMO_ADD_PARAMETER(coarse_level_start)
 CGAL_HMO_ADD_PARAMETER(edge_angle_stages)
 /// `Hexahedral_mesh_optimization::Method::package` (default) or `Method::paper`
 CGAL_HMO_ADD_PARAMETER(method)
+/// `Hexahedral_mesh_optimization::Paper_recipe`: a published run's parameters (`Method::paper` only)
+CGAL_HMO_ADD_PARAMETER(paper_recipe)
 /// largest relative difference between the volume of the hex mesh and the
 /// volume bounded by the reference that `check_hex_mesh_against_reference()`
 /// accepts (default 0.01)
