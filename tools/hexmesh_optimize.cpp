@@ -202,7 +202,8 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
             HP::coarse_level_start(options.coarse_level,
             HP::method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                             : CGAL::Hexahedral_mesh_optimization::Method::package,
-            CGAL::parameters::visitor(std::ref(visitor)))))))))))))));
+            HP::paper_recipe(options.paper_recipe,
+            CGAL::parameters::visitor(std::ref(visitor))))))))))))))));
   CGAL::Hexahedral_mesh_optimization::Optimization_result r;
   if(reference)
   {
