@@ -842,7 +842,22 @@ private:
                           ts.update_constraints(p, bc);
                         },
                         ts.mean_boundary_edge_length());
-    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished(stage, r, left); };
+    // (the paper's schedule: the rounds may go below the MSJ they started
+    // from, and the pass ends in the best state of its rounds)
+    const bool keep_best = m_s.schedule.msj_stage_keep_best;
+    std::vector<Vec3> best;
+    double best_msj = floor;
+    if(keep_best) best = st.mesh.points;
+    opt.on_round = [&](int r, std::size_t left) {
+      m_visitor.round_finished(stage, r, left);
+      if(!keep_best) return;
+      const double now = quality_statistics(st.mesh).msj;
+      if(now > best_msj)
+      {
+        best_msj = now;
+        best = st.mesh.points;
+      }
+    };
     opt.accept_step = [&](const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& p) {
       return surface_kept(ts.boundary(), guard, guard_tolerance, region, before, p);
     };
@@ -854,8 +869,10 @@ private:
     ls.local_iterations = m_s.local_iterations;
     ls.max_rounds = m_s.schedule.msj_stage_rounds;
     ls.time_limit = m_s.time_limit;
-    ls.min_sj_floor = floor;
-    return opt.run(st.mesh.points, ls);
+    ls.min_sj_floor = keep_best ? 0. : floor;
+    const Local_optimizer_report r = opt.run(st.mesh.points, ls);
+    if(keep_best) st.mesh.points = best;
+    return r;
   }
 
   /// whether a step of the edge-angle optimiser on `region` (free vertices

@@ -148,6 +148,11 @@ struct Optimization_schedule
   /// state only above their target: a projection that pushes elements back
   /// under it undoes the pass)
   bool msj_stage_projection_at_target = false;
+  /// the edge-angle passes of the MSJ stages may go below the MSJ they
+  /// started from (never below 0) and end in the best state of their rounds,
+  /// as the authors' optimiser keeps its best iteration; false: every step
+  /// that lowers a region's minimum under the stage's MSJ is rolled back
+  bool msj_stage_keep_best = false;
   /// the rounds of the paper's schedule: the outer iterations of its scripts
   static constexpr int paper_msj_stage_rounds = 20;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
@@ -278,6 +283,7 @@ struct Optimization_schedule
     s.msj_stage_fine_from = 0.4;
     s.msj_stage_rounds = paper_msj_stage_rounds;
     s.msj_stage_projection_at_target = true;
+    s.msj_stage_keep_best = true;
     return s;
   }
 };
