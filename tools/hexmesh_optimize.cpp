@@ -197,6 +197,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
                            .surface_tolerance(options.surface_tolerance)
                            .method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                                         : CGAL::Hexahedral_mesh_optimization::Method::package)
+                           .paper_recipe(options.paper_recipe)
                            .visitor(std::ref(visitor));
   // the schedule's settings the tool's options expose (not public API)
   const auto np = HMOI::add_internal_parameter(

@@ -10,11 +10,13 @@
 #define HMO_TOOLS_HEXMESH_OPTIMIZE_OPTIONS_H
 
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
+#include <CGAL/Hexahedral_mesh_optimization/parameters.h>
 
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -32,6 +34,10 @@ struct Hexmesh_optimize_options
   // optimisation (with OUTPUT): the whole pipeline unless --untangle
   bool untangle_only = false;     ///< --untangle: only remove the inverted elements
   bool paper_method = false;      ///< --method paper: the method of Xu & Chen alone
+  /// --paper-recipe FILE: a published run's parameters (with --method paper)
+  std::string paper_recipe_file;
+  CGAL::Hexahedral_mesh_optimization::Paper_recipe paper_recipe;
+  bool sharp_angle_given = false, target_msj_given = false; ///< given on the command line
   std::string reference;          ///< --reference SURFACE: the surface the boundary must stay on
   double sharp_angle = 165.;      ///< --sharp-angle DEG
   double crease_seed_angle = 180.; ///< --crease-seed-angle DEG
@@ -117,6 +123,67 @@ inline bool parse_count(const std::string& name, const std::string& text, std::s
   return true;
 }
 
+/// Reads a recipe file (`Paper_recipe`): one `name value` (or `name = value`)
+/// a line, the names those of the struct's fields, `#` starting a comment;
+/// false with a message on an unknown name or a bad value.
+inline bool read_paper_recipe(const std::string& path, CGAL::Hexahedral_mesh_optimization::Paper_recipe& r,
+                              std::string& error)
+{
+  std::ifstream in(path);
+  if(!in)
+  {
+    error = "option --paper-recipe: cannot read '" + path + "'";
+    return false;
+  }
+  struct Field
+  {
+    const char* name;
+    double* value;
+    double min, max;
+  };
+  double global = r.global ? 1. : 0., steps = r.msj_in_steps ? 1. : 0., iterations = r.pull_back_iterations;
+  const Field fields[] = {{"sharp_angle", &r.sharp_angle, 0., 180.},
+                          {"msj_sharp_angle", &r.msj_sharp_angle, 0., 180.},
+                          {"alpha", &r.alpha, 0., 1e12},
+                          {"beta", &r.beta, 0., 1e12},
+                          {"xi", &r.xi, 0., 10.},
+                          {"global", &global, 0., 1.},
+                          {"pull_back_below_alpha", &r.pull_back_below_alpha, 0., 1e12},
+                          {"pull_back_iterations", &iterations, 0., 1e6},
+                          {"target_msj", &r.target_msj, -1., 1.},
+                          {"msj_in_steps", &steps, 0., 1.},
+                          {"msj_alpha", &r.msj_alpha, 0., 1e12},
+                          {"msj_beta", &r.msj_beta, 0., 1e12},
+                          {"msj_xi", &r.msj_xi, 0., 10.}};
+  std::string line;
+  for(int number = 1; std::getline(in, line); ++number)
+  {
+    line = line.substr(0, line.find('#'));
+    for(char& c : line) if(c == '=') c = ' ';
+    std::istringstream words(line);
+    std::string name, value, extra;
+    if(!(words >> name)) continue;
+    const std::string where = path + ":" + std::to_string(number);
+    if(!(words >> value) || (words >> extra))
+    {
+      error = "option --paper-recipe: " + where + ": expected 'name value'";
+      return false;
+    }
+    const Field* f = nullptr;
+    for(const Field& c : fields) if(name == c.name) f = &c;
+    if(f == nullptr)
+    {
+      error = "option --paper-recipe: " + where + ": unknown name '" + name + "'";
+      return false;
+    }
+    if(!parse_number(where + " " + name, value, f->min, f->max, *f->value, error)) return false;
+  }
+  r.global = global != 0.;
+  r.msj_in_steps = steps != 0.;
+  r.pull_back_iterations = static_cast<int>(iterations);
+  return true;
+}
+
 inline const std::vector<Option_spec>& option_table()
 {
   typedef Hexmesh_optimize_options O;
@@ -139,15 +206,30 @@ inline const std::vector<Option_spec>& option_table()
        o.paper_method = v == "paper";
        return true;
      }},
+    {"--paper-recipe", "FILE",
+     "with --method paper: the parameters of a published run, one 'name value' a line (names: the fields of "
+     "Paper_recipe: sharp_angle, msj_sharp_angle, alpha, beta, xi, global, pull_back_below_alpha, "
+     "pull_back_iterations, target_msj, msj_in_steps, msj_alpha, msj_beta, msj_xi; 0/1 for flags); --sharp-angle and --target-msj override it "
+     "(default: the generic recipe of the authors' scripts)",
+     [](O& o, const std::string& v, std::string& e) {
+       o.paper_recipe_file = v;
+       return read_paper_recipe(v, o.paper_recipe, e);
+     }},
     {"--target-msj", "X",
      "stop raising the minimum scaled Jacobian at X (default 1: as high as it gets)",
-     [](O& o, const std::string& v, std::string& e) { return parse_number("--target-msj", v, 0., 1., o.target_msj, e); }},
+     [](O& o, const std::string& v, std::string& e) {
+       o.target_msj_given = true;
+       return parse_number("--target-msj", v, 0., 1., o.target_msj, e);
+     }},
     {"--reference", "SURFACE",
      "triangle surface (.obj .off .ply .stl) the boundary must stay on (default: the input's boundary)",
      [](O& o, const std::string& v, std::string&) { o.reference = v; return true; }},
     {"--sharp-angle", "DEG",
      "dihedral angle below which a boundary edge is a feature (default 165)",
-     [](O& o, const std::string& v, std::string& e) { return parse_number("--sharp-angle", v, 0., 180., o.sharp_angle, e); }},
+     [](O& o, const std::string& v, std::string& e) {
+       o.sharp_angle_given = true;
+       return parse_number("--sharp-angle", v, 0., 180., o.sharp_angle, e);
+     }},
     {"--reference-feature-angle", "DEG",
      "with --reference: its edges below this dihedral angle are creases the boundary recovers (default 150; 0: off)",
      [](O& o, const std::string& v, std::string& e) { return parse_number("--reference-feature-angle", v, 0., 180., o.reference_feature_angle, e); }},
@@ -350,6 +432,16 @@ inline Parse_result parse_options(int argc, const char* const* argv, Hexmesh_opt
   {
     error = "too many file arguments (expected INPUT [OUTPUT]): '" + files[2] + "'";
     return Parse_result::error;
+  }
+  if(!options.paper_recipe_file.empty() && !options.paper_method)
+  {
+    error = "option --paper-recipe needs --method paper";
+    return Parse_result::error;
+  }
+  if(options.paper_method) // the recipe's angle and target unless given here
+  {
+    if(!options.sharp_angle_given) options.sharp_angle = options.paper_recipe.sharp_angle;
+    if(!options.target_msj_given) options.target_msj = options.paper_recipe.target_msj;
   }
   options.input = files[0];
   if(files.size() == 2)

@@ -95,6 +95,13 @@
 //                tool:
 //                  hexmesh-optimize DIR/<input>.mesh out.mesh
 //                    --reference DIR/<mesh>_reference.off
+//   --paper    : `Method::paper` with the recipe of each published run of
+//                the paper on its 8 rows (`paper_rows()`, from
+//                ../shared/paper/SCRIPTS.md), the published error as the
+//                surface tolerance; with --cotrik DEST (the folder given to
+//                ../shared/peers/build_cotrik.sh), the authors' own tools too,
+//                with the same recipe (`cotrik_run()`). Columns: MSJ / ASJ /
+//                surface error (Hausdorff to the input's boundary) / seconds.
 //   --ablate   : the default pipeline, then without each of its stages in
 //                turn (`ablations()`), over the 8 published rows and the
 //                stress sets (--stress-seeds per mesh and mode): one line per
@@ -280,6 +287,8 @@ struct Setup_visitor : HMO::Default_optimization_visitor
 /// runs (`--ablate` changes them)
 static HMO::internal::Optimization_schedule g_schedule;
 static bool g_pull_back = true;
+/// the recipe of the paper's method's runs (`--paper` sets each row's)
+static HMO::Paper_recipe g_recipe;
 
 static HMO::Optimization_result run_optimiser(Mesh& mesh, bool untangle_only, const HMO::internal::Triangle_surface& reference,
                                               double tolerance, Setup_visitor& visitor, bool paper = false)
@@ -287,6 +296,7 @@ static HMO::Optimization_result run_optimiser(Mesh& mesh, bool untangle_only, co
   typedef HMO::internal::Optimization_schedule Schedule;
   using HMO::internal::add_internal_parameter;
   const auto np = CGAL::parameters::method(paper ? HMO::Method::paper : HMO::Method::package)
+                    .paper_recipe(g_recipe)
                     .visitor(std::ref(visitor));
   const auto npm = add_internal_parameter(add_internal_parameter(np, INP::schedule, paper ? Schedule::paper() : g_schedule),
                                           INP::pull_back, paper || g_pull_back);
@@ -1432,6 +1442,274 @@ static bool write_results_section(const std::string& path, const std::string& na
   return std::rename(tmp.c_str(), path.c_str()) == 0;
 }
 
+// ---------------------------------------------------------------------------
+// --paper: `Method::paper` with each published run's recipe
+
+/// θ in degrees from the authors' `cosangle` = cos(180° − θ)
+static double theta_of_cosangle(double c) { return 180. - std::acos(c) * 180. / 3.14159265358979323846; }
+
+/// One published run on the shared rows (../shared/paper/SCRIPTS.md): its
+/// figures, its parameters as a `Paper_recipe`, and how the authors' tools
+/// ran it (`cotrik_run`)
+struct Paper_row
+{
+  std::string file;
+  double msj, asj, error; ///< the published result files' figures
+  HMO::Paper_recipe recipe;
+  bool generic;           ///< the generic script (LocalMeshOpt.sh) rather than a hand-written one
+  /// hand-written rows: the untangling call's own arguments, the MSJ call's
+  /// extra ones, and the final SmoothMap's iterations and cosangle
+  std::string untangle_args, post_cosangle;
+  int post_iterations = 20;
+};
+
+static std::vector<Paper_row> paper_rows()
+{
+  std::vector<Paper_row> rows;
+  auto generic = [&](const char* file, double msj, double asj, double error, double target, double theta) {
+    Paper_row r{file, msj, asj, error, HMO::Paper_recipe(), true, "", "", 20};
+    r.recipe.target_msj = target;
+    r.recipe.sharp_angle = theta;
+    rows.push_back(r);
+  };
+  // Table 1, hand-written: the untangling's θ is the tools' default (cosangle 0.9397)
+  const double theta0 = theta_of_cosangle(0.939692621);
+  auto table1 = [&](const char* file, double msj, double asj, double error, const char* untangle,
+                    const char* post_cosangle, int post_iterations) -> HMO::Paper_recipe& {
+    rows.push_back(Paper_row{file, msj, asj, error, HMO::Paper_recipe(), false, untangle, post_cosangle, post_iterations});
+    HMO::Paper_recipe& r = rows.back().recipe;
+    r.sharp_angle = theta0;
+    r.pull_back_below_alpha = 1e12; // the scripts run SlimHex whatever α ended at
+    r.msj_in_steps = false;         // and one MSJ call, straight to the target
+    return r;
+  };
+  {
+    HMO::Paper_recipe& r = table1("edge-cone/block_in.mesh", 0.252, 0.857, 0.0027,
+      "LocalMeshOpt input=scaled.vtk alpha=100 beta=100 gamma=1.0 anisotropy=0.6 allowBigStep=true minScaledJacobian=0", "0.996", 20);
+    r.alpha = r.beta = 100.; r.xi = 0.6;
+    r.msj_alpha = r.msj_beta = 1000.; r.msj_xi = 0.1; r.target_msj = 0.25; r.msj_sharp_angle = theta_of_cosangle(0.996);
+  }
+  generic("edge-cone/bunny_in.mesh", 0.651, 0.953, 0.0065, 0.65, 170.);
+  {
+    HMO::Paper_recipe& r = table1("edge-cone/bust_in.mesh", 0.201, 0.869, 0.0088,
+      "LocalMeshOpt input=scaled.vtk alpha=100 beta=100 gamma=1.0 anisotropy=0.6 minScaledJacobian=0", "0.9848", 10);
+    r.alpha = r.beta = 100.; r.xi = 0.6;
+    r.msj_alpha = r.msj_beta = 1000.; r.msj_xi = 0.6; r.target_msj = 0.18;
+    r.msj_sharp_angle = theta_of_cosangle(0.9359);
+  }
+  {
+    HMO::Paper_recipe& r = table1("edge-cone/cap_in.mesh", 0.114, 0.775, 0.0053,
+      "LocalMeshOpt input=scaled.vtk alpha=200 beta=500 gamma=1.0 anisotropy=0.2 minScaledJacobian=0.4 useSmallBlock=true "
+      "blockSize=20", "0.939692621", 10);
+    r.alpha = 200.; r.beta = 500.; r.xi = 0.2;
+    r.msj_alpha = 500.; r.msj_beta = 1000.; r.msj_xi = 0.2; r.target_msj = 0.1;
+  }
+  {
+    HMO::Paper_recipe& r = table1("edge-cone/hanger_stresstest_in.mesh", 0.723, 0.974, 0.0015,
+      "MeshOpt input=scaled.vtk targetSurface=scaled.vtk alpha=20 beta=20 anisotropy=1.2 minScaledJacobian=0.66 "
+      "cosangle=0.999 stepSize=0.999 useProjection=false", "0.999", 20);
+    r.sharp_angle = r.msj_sharp_angle = theta_of_cosangle(0.999);
+    r.global = true; r.alpha = r.beta = 20.; r.xi = 1.2; r.target_msj = 0.66;
+    r.msj_alpha = r.msj_beta = 20.; r.msj_xi = 1.2; // (the same run: α, β count as 500 in the MSJ stages)
+    r.pull_back_below_alpha = 0.; // no SlimHex
+  }
+  {
+    HMO::Paper_recipe& r = table1("edge-cone/impeller_stresstest_in.mesh", 0.192, 0.934, 0.0005,
+      "MeshOpt input=scaled.vtk targetSurface=scaled.vtk alpha=2000 beta=2000 anisotropy=0.02 minScaledJacobian=0.66 "
+      "cosangle=0.999 iters=8", "0.99948", 20);
+    r.sharp_angle = theta_of_cosangle(0.999);
+    r.global = true; r.alpha = r.beta = 2000.; r.xi = 0.02;
+    r.msj_alpha = 500.; r.msj_beta = 1250.; r.msj_xi = 0.1; r.target_msj = 0.2;
+    r.msj_sharp_angle = theta_of_cosangle(0.99948);
+  }
+  // the two Table-2 result files (their MSJ swapped in the printed table)
+  generic("amips/fertility_gregson11.mesh", 0.602, 0.933, 0.0094, 0.75, 165.);
+  generic("amips/rockerarm_li12.vtk", 0.700, 0.939, 0.0079, 0.75, 165.);
+  return rows;
+}
+
+/// what a run left: inverted, MSJ, ASJ, surface error against the input's boundary
+struct Paper_figures
+{
+  std::string error;
+  std::size_t inverted = 0;
+  double msj = 0., asj = 0., surface_error = 0., seconds = 0.;
+};
+
+static Paper_figures measure_output(const Mesh& input, const Mesh& output, double seconds)
+{
+  Paper_figures f;
+  const auto q = CGAL::hex_mesh_quality(output);
+  f.inverted = q.inverted; f.msj = q.msj; f.asj = q.asj; f.seconds = seconds;
+  HMO::internal::Triangle_surface boundary;
+  HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(input, K()), boundary);
+  f.surface_error = CGAL::hex_mesh_surface_error(output, boundary);
+  return f;
+}
+
+/// Runs the authors' tools on `in` (VTK) with the row's recipe in the
+/// folder `work`, as their scripts do; the result is `work`/result.vtk.
+/// Returns false (with `why`) when a tool fails.
+static bool cotrik_run(const std::string& bin, const std::string& work, const Paper_row& row, std::string& why)
+{
+  auto run = [&](const std::string& args) { // one of the tools, its output appended to tools.log
+    const std::string cmd = "cd '" + work + "' && '" + bin + "/" + args.substr(0, args.find(' ')) + "'" +
+                            args.substr(args.find(' ')) + " >> tools.log 2>&1";
+    if(std::system(cmd.c_str()) == 0) return true;
+    why = "failed: " + args.substr(0, 60);
+    return false;
+  };
+  auto copy = [&](const std::string& from, const std::string& to) {
+    std::ifstream in(work + "/" + from, std::ios::binary);
+    std::ofstream out(work + "/" + to, std::ios::binary);
+    out << in.rdbuf();
+  };
+  auto quality = [&](const std::string& file) {
+    Mesh m;
+    if(!CGAL::IO::read_hex_mesh(work + "/" + file, m)) return CGAL::hex_mesh_quality(Mesh());
+    return CGAL::hex_mesh_quality(m);
+  };
+  auto num = [](double x) { std::ostringstream s; s << std::setprecision(10) << x; return s.str(); };
+  const HMO::Paper_recipe& r = row.recipe;
+  const std::string cos_untangle = num(std::cos((180. - r.sharp_angle) * 3.14159265358979323846 / 180.));
+  const double msj_theta = r.msj_sharp_angle > 0. ? r.msj_sharp_angle : r.sharp_angle;
+  const std::string cos_msj = num(std::cos((180. - msj_theta) * 3.14159265358979323846 / 180.));
+  if(!run("MeshScale input.vtk scaled.vtk")) return false;
+  std::string current = "scaled.vtk", surface = "scaled.vtk";
+  // one LocalMeshOpt call toward `target` from `current`; true when it left nothing inverted and the MSJ above target
+  auto local = [&](double a, double b, double xi, double target, int block, bool big_step, const std::string& cos) {
+    if(!run("LocalMeshOpt input=" + current + " alpha=" + num(a) + " beta=" + num(b) + " gamma=1.0 anisotropy=" +
+            num(xi) + " minScaledJacobian=" + num(target) + " cosangle=" + cos + " useSmallBlock=true blockSize=" +
+            std::to_string(block) + " localIters=20 iters=20 allowBigStep=" + (big_step ? "true" : "false") +
+            " targetSurface=" + surface + " projectToTargetSurface=true"))
+      return false;
+    const auto q = quality("BestLocalOpt.vtk");
+    return q.inverted == 0 && q.msj > target;
+  };
+  // the scripts' back-off: ξ − 0.1 down to 0.2, then α, β halved and ξ back to its start
+  auto with_back_off = [&](double& a, double& b, double xi0, double target, int block, double min_alpha,
+                           const std::string& out) {
+    double xi = xi0;
+    for(;;)
+    {
+      if(local(a, b, xi, target, block, false, cos_msj)) { copy("BestLocalOpt.vtk", out); return true; }
+      if(!why.empty()) return false;
+      xi -= 0.1;
+      if(xi < 0.2 - 1e-9) { a /= 2.; b /= 2.; xi = xi0; }
+      if(a < min_alpha) return false;
+    }
+  };
+  if(row.generic)
+  {
+    if(!run("SmoothMap orig=scaled.vtk input=scaled.vtk output=smoothed.vtk iters=10 preserveSharpFeature=true cosangle=" +
+            cos_untangle))
+      return false;
+    current = surface = "smoothed.vtk";
+    double a = r.alpha, b = r.beta;
+    if(quality(current).inverted > 0)
+    {
+      if(!with_back_off(a, b, r.xi, 0., 100, 1., "untangled.vtk") && !why.empty()) return false;
+      current = "untangled.vtk";
+      if(a < 500. && !run("SlimHex input=untangled.vtk target=smoothed.vtk result=slim.vtk iters=20")) return false;
+      if(a < 500.) current = "slim.vtk";
+    }
+    for(int k = 1;; ++k)
+    {
+      double t = k <= 4 ? 0.1 * k : 0.4 + 0.05 * (k - 4);
+      if(t > r.target_msj) t = r.target_msj;
+      double sa = r.msj_alpha, sb = r.msj_beta;
+      if(!with_back_off(sa, sb, r.msj_xi, t, 50, 500., "step.vtk")) { if(!why.empty()) return false; break; }
+      current = "step.vtk";
+      if(t >= r.target_msj) break;
+    }
+  }
+  else
+  {
+    // Table 1: one untangling call, SlimHex, one MSJ call (SCRIPTS.md)
+    if(!run(row.untangle_args)) return false;
+    copy(r.global ? "opt.vtk" : "BestLocalOpt.vtk", "untangled.vtk");
+    current = "untangled.vtk";
+    if(r.pull_back_below_alpha > 0.)
+    {
+      if(!run("SlimHex input=untangled.vtk target=scaled.vtk result=slim.vtk iters=20")) return false;
+      current = "slim.vtk";
+      local(r.msj_alpha, r.msj_beta, r.msj_xi, r.target_msj, 100, false, cos_msj);
+      if(!why.empty()) return false;
+      copy("BestLocalOpt.vtk", "msj.vtk");
+      current = "msj.vtk";
+      if(r.global)
+      {
+        if(!run("SlimHex input=msj.vtk target=scaled.vtk result=slim2.vtk iters=5")) return false;
+        current = "slim2.vtk";
+      }
+    }
+  }
+  if(!run("SmoothMap orig=scaled.vtk input=" + current + " output=final.vtk iters=" + std::to_string(row.post_iterations) +
+          " preserveQuality=true preserveSharpFeature=true cosangle=" + (row.generic ? cos_msj : row.post_cosangle)))
+    return false;
+  return run("MeshScale final.vtk result.vtk orig=input.vtk");
+}
+
+static std::string paper_cell(const Paper_figures& f, double msj, double error)
+{
+  if(!f.error.empty()) return f.error;
+  char b[160];
+  std::snprintf(b, sizeof b, "%.3f / %.3f / %.4f / %.1f s%s%s", f.msj, f.asj, f.surface_error, f.seconds,
+                f.inverted ? (", " + std::to_string(f.inverted) + " inverted").c_str() : "",
+                f.inverted == 0 && f.msj >= 0.9 * msj && f.surface_error <= 1.2 * error ? " ✓" : "");
+  return b;
+}
+
+/// `Method::paper` with each row's published recipe (and, given the
+/// authors' tools, theirs on the same input), beside the published figures
+static int paper_recipes(const std::string& dir, const std::string& only, int threads, const std::string& cotrik)
+{
+  std::cout << "Method::paper with the published recipes (../shared/paper/SCRIPTS.md); surface tolerance: the "
+               "published error; ✓: 0 inverted, MSJ ≥ 90 % and error ≤ 1.2 × the published\n\n"
+            << "| row | published MSJ / ASJ / err | paper mode MSJ / ASJ / err / s | authors' tools MSJ / ASJ / err / s |\n"
+            << "|---|---|---|---|\n";
+  int failed = 0;
+  for(const Paper_row& row : paper_rows())
+  {
+    if(!only.empty() && row.file.find(only) == std::string::npos) continue;
+    Mesh input;
+    if(!CGAL::IO::read_hex_mesh(dir + "/" + row.file, input))
+    {
+      std::cout << "| " << row.file << " | read error | | |\n";
+      ++failed;
+      continue;
+    }
+    g_recipe = row.recipe;
+    const Row_run p = run_row(dir, row.file, false, false, nullptr, row.error, false, threads, false, true);
+    g_recipe = HMO::Paper_recipe();
+    Paper_figures ours;
+    if(p.error.empty()) ours = measure_output(input, p.output, p.seconds);
+    else ours.error = p.error;
+    Paper_figures theirs;
+    if(cotrik.empty()) theirs.error = "– (no --cotrik)";
+    else
+    {
+      char tmpl[] = "/tmp/hmo_cotrik_XXXXXX";
+      const std::string work = ::mkdtemp(tmpl) ? tmpl : "";
+      std::string why;
+      const Clock::time_point t = Clock::now();
+      const std::string prep = "/usr/bin/python3 '" + cotrik + "/add_boundary_quads.py' '" + dir + "/" + row.file +
+                               "' '" + work + "/input.vtk' > /dev/null";
+      Mesh out;
+      if(work.empty() || std::system(prep.c_str()) != 0) theirs.error = "input conversion failed";
+      else if(!cotrik_run(cotrik + "/bin", work, row, why)) theirs.error = why;
+      else if(!CGAL::IO::read_hex_mesh(work + "/result.vtk", out)) theirs.error = "no result";
+      else theirs = measure_output(input, out, seconds_since(t));
+      if(!work.empty() && std::system(("rm -rf '" + work + "'").c_str()) != 0) theirs.error += " (work dir kept)";
+    }
+    char pub[64];
+    std::snprintf(pub, sizeof pub, "%.3f / %.3f / %.4f", row.msj, row.asj, row.error);
+    std::cout << "| " << row.file << " | " << pub << " | " << paper_cell(ours, row.msj, row.error) << " | "
+              << paper_cell(theirs, row.msj, row.error) << " |" << std::endl;
+  }
+  return failed ? 1 : 0;
+}
+
 static void usage(std::ostream& out)
 {
   out << "usage: benchmark_hex_mesh_optimization [DATA_DIR] [--untangle] [--only SUBSTRING]\n"
@@ -1457,6 +1735,9 @@ static void usage(std::ostream& out)
          "                         published rows and the stress sets (--stress-seeds per mesh and mode)\n"
          "  --ablate-only NAME     with --ablate, the default and the variants whose name contains NAME\n"
          "  --variant NAME         the first of --ablate's variants whose name contains NAME, in any mode\n"
+         "  --paper                the paper's method with each published run's recipe (SCRIPTS.md) on its\n"
+         "                         8 rows, beside the published figures\n"
+         "  --cotrik DEST          with --paper, also run the authors' tools (build_cotrik.sh DEST) on each row\n"
          "  --results FILE         also write the tables into FILE (Markdown), replacing the section of\n"
          "                         this mode (rows, untangle, scaling, stress or ablation) and keeping the rest\n"
          "DATA_DIR defaults to " HMO_SHARED_DATA_DIR "\n";
@@ -1478,7 +1759,8 @@ int main(int argc, char** argv)
   bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false, paper_column = true;
   long long threads = 0, max_hexes = 0, stress_seeds = 10;
   std::string stress_write, ablate_variant, results, variant;
-  bool ablate_mode = false, boundary_layer_mode = false;
+  bool ablate_mode = false, boundary_layer_mode = false, paper_mode = false;
+  std::string cotrik;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -1499,6 +1781,8 @@ int main(int argc, char** argv)
     else if(a == "--stress") stress_mode = true;
     else if(a == "--boundary-layer") boundary_layer_mode = true;
     else if(a == "--ablate") ablate_mode = true;
+    else if(a == "--paper") paper_mode = true;
+    else if(a == "--cotrik" && has_value) cotrik = argv[++i];
     else if(a == "--ablate-only" && has_value) ablate_variant = argv[++i];
     else if(a == "--stress-seeds" && has_value)
     {
@@ -1604,6 +1888,11 @@ int main(int argc, char** argv)
   {
     section = "boundary-layer";
     status = boundary_layer_sets(int(stress_seeds), int(threads));
+  }
+  else if(paper_mode)
+  {
+    section = "paper";
+    status = paper_recipes(dir, only, int(threads), cotrik);
   }
   else if(ablate_mode)
   {

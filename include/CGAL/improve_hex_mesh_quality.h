@@ -55,6 +55,23 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.local_iterations = u.local_iterations;
   s.alpha = (std::max)(u.alpha, 500.);
   s.beta = (std::max)(u.beta, 500.);
+  if(paper) // the recipe's MSJ stages, where no named parameter is given
+  {
+    const Paper_recipe r = paper_recipe_parameter(np);
+    s.target_msj = checked_parameter(
+      "target_msj", choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), r.target_msj), -1., 1.);
+    if(r.msj_sharp_angle > 0.) s.sharp_angle = r.msj_sharp_angle;
+    s.alpha = (std::max)(choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), r.msj_alpha), 500.);
+    s.beta = (std::max)(choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), r.msj_beta), 500.);
+    s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), r.msj_xi);
+    s.pull_back_to_input = true;
+    s.schedule.pull_back_iterations = r.pull_back_iterations;
+    if(!r.msj_in_steps && s.target_msj > 0.) // one stage, straight to the target
+    {
+      s.schedule.msj_stage_step = s.target_msj;
+      s.schedule.msj_stage_fine_from = 2.;
+    }
+  }
   s.reference_points = u.reference_points;
   s.reference_triangles = u.reference_triangles;
   s.reference_creases = u.reference_creases;
@@ -191,6 +208,9 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   {
     Hex_mesh_untangler<Visitor> untangler(u, visitor);
     result = untangler.run(arrays, false); // the improver measures the surface error
+    // the paper's recipe: the pull-back only after a surface relaxed below the recipe's α
+    if(s.pull_back_to_input && !(untangler.final_alpha() < paper_recipe_parameter(np).pull_back_below_alpha))
+      s.pull_back = false;
   }
   // a valid refined mesh: its coarse level first (Coarse_level_start.h)
   std::vector<Vec3> boundary_points;

@@ -88,6 +88,22 @@ const std::atomic<bool>* stop_flag_parameter(const NamedParameters& np)
                                       static_cast<const std::atomic<bool>*>(nullptr));
 }
 
+/// the `paper_recipe` named parameter, checked; default: the generic recipe
+template <class NamedParameters>
+Paper_recipe paper_recipe_parameter(const NamedParameters& np)
+{
+  Paper_recipe r = parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::paper_recipe),
+                                                Paper_recipe());
+  for(double* a : {&r.sharp_angle, &r.msj_sharp_angle}) checked_parameter("paper_recipe angle", *a, 0., 180.);
+  for(double* w : {&r.alpha, &r.beta, &r.msj_alpha, &r.msj_beta, &r.pull_back_below_alpha})
+    checked_parameter("paper_recipe alpha/beta", *w, 0., 1e12);
+  checked_parameter("paper_recipe xi", r.xi, 0., 10.);
+  checked_parameter("paper_recipe msj_xi", r.msj_xi, 0., 10.);
+  checked_parameter("paper_recipe target_msj", r.target_msj, -1., 1.);
+  checked_parameter("paper_recipe pull_back_iterations", r.pull_back_iterations, 0., 1e9);
+  return r;
+}
+
 /// the untangler's settings and the reference surface (as a soup) from named
 /// parameters (the time limit, which starts when it is made, is the caller's)
 template <class NamedParameters>
@@ -96,22 +112,30 @@ void read_untangle_parameters(const NamedParameters& np, Untangle_settings& s, s
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
+  const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
+  // the paper's method: the recipe's values where no named parameter is given
+  const bool paper = method == Method::paper;
+  const Paper_recipe recipe = paper_recipe_parameter(np);
   // (the ranges are those of the tool and of the Python binding)
-  s.sharp_angle =
-    checked_parameter("sharp_angle", choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), 165.), 0., 180.);
+  s.sharp_angle = checked_parameter(
+    "sharp_angle", choose_parameter(get_parameter(np, hex_mesh_internal_np::sharp_angle), paper ? recipe.sharp_angle : 165.),
+    0., 180.);
   s.reference_feature_angle = checked_parameter(
     "reference_feature_angle",
     choose_parameter(get_parameter(np, hex_mesh_internal_np::reference_feature_angle), 150.), 0., 180.);
-  s.alpha = checked_parameter("alpha", choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), 1000.), 0., 1e12);
-  s.beta = checked_parameter("beta", choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), 1000.), 0., 1e12);
-  s.xi = checked_parameter("xi", choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), 0.6), 0., 10.);
+  s.alpha = checked_parameter(
+    "alpha", choose_parameter(get_parameter(np, hex_mesh_internal_np::alpha), paper ? recipe.alpha : 1000.), 0., 1e12);
+  s.beta = checked_parameter(
+    "beta", choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), paper ? recipe.beta : 1000.), 0., 1e12);
+  s.xi = checked_parameter("xi", choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), paper ? recipe.xi : 0.6),
+                           0., 10.);
+  s.global_region = paper && recipe.global;
   s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
   s.local_iterations = static_cast<int>(checked_parameter(
     "local_iterations", choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20), 1., 1e9));
   s.max_rounds = static_cast<int>(checked_parameter(
     "number_of_iterations", choose_parameter(get_parameter(np, internal_np::number_of_iterations), 60), 0., 1e9));
   s.barrier_fallback = choose_parameter(get_parameter(np, hex_mesh_internal_np::barrier_fallback), true);
-  const Method method = choose_parameter(get_parameter(np, hex_mesh_internal_np::method), Method::package);
   s.schedule = choose_parameter(get_parameter(np, hex_mesh_internal_np::schedule),
                                 method == Method::paper ? Optimization_schedule::paper() : Optimization_schedule());
   reference_to_soup(

@@ -336,6 +336,33 @@ static void test_paper_method()
   HMO_CHECK(rp.stages.front().name == "interior");
 }
 
+static void test_paper_recipe()
+{
+  // a published run's recipe: its target in one MSJ stage, the SLIM
+  // pull-back toward the input's vertices when α ended below its threshold
+  const int n = 5;
+  Mesh m = shell(n, 1.0);
+  perturb_interior(m, n, 0.6, 5);
+  const Mesh input = m;
+  HMO::Paper_recipe recipe;
+  recipe.alpha = recipe.beta = 100.;
+  recipe.pull_back_below_alpha = 1e12;
+  recipe.target_msj = 0.3;
+  recipe.msj_in_steps = false;
+  const HMO::Optimization_result r =
+    CGAL::optimize_hex_mesh(m, CGAL::parameters::paper_recipe(recipe).method(HMO::Method::paper));
+  HMO_CHECK(r.inverted_after == 0);
+  for(const HMO::Stage_report& s : r.stages)
+    HMO_CHECK(s.name.rfind("msj>=", 0) != 0 || s.name == "msj>=0.3");
+  // the pull-back puts the boundary back on the input's, the MSJ stage keeps it within the tolerance
+  HMO_CHECK(CGAL::hex_mesh_surface_error(m, input) <= 0.005);
+  // package mode ignores the recipe: the same output with and without it
+  Mesh a = input, b = input;
+  CGAL::optimize_hex_mesh(a, CGAL::parameters::paper_recipe(recipe));
+  CGAL::optimize_hex_mesh(b);
+  HMO_CHECK(a.points == b.points);
+}
+
 static void test_lcc()
 {
   const int n = 4;
@@ -640,6 +667,7 @@ HMO_TEST_MAIN(test_improve_quality)
   HMO_CASE(test_nothing_to_do());
   HMO_CASE(test_pipeline_on_tangled_mesh());
   HMO_CASE(test_paper_method());
+  HMO_CASE(test_paper_recipe());
   HMO_CASE(test_lcc());
   HMO_CASE(test_coarse_level_start());
   return hmo_test::report(argv[0]);

@@ -60,6 +60,30 @@ enum class Method
   paper
 };
 
+/// The parameters of one published run of the paper (named parameter
+/// `paper_recipe`, read with `Method::paper` only; other named parameters
+/// given explicitly take precedence). The defaults are the generic recipe of
+/// the authors' scripts; the per-model ones of the paper's Table 1 are in
+/// the benchmark and the user manual.
+struct Paper_recipe
+{
+  /// θ in degrees while untangling (the named parameter `sharp_angle`
+  /// overrides it), and in the MSJ stages (0: the same)
+  double sharp_angle = 165., msj_sharp_angle = 0.;
+  /// untangling: α, β, ξ at the start (ξ falls by 0.1 to 0.2, then α, β are halved)
+  double alpha = 1000., beta = 1000., xi = 0.6;
+  /// untangling on the whole mesh at once (the global variant) instead of local regions
+  bool global = false;
+  /// the SLIM pull-back toward the input's vertices runs when α ended below this (0: never)
+  double pull_back_below_alpha = 500.;
+  int pull_back_iterations = 20;
+  /// MSJ stages: the target, reached in steps of 0.1 up to 0.4 and of 0.05
+  /// above (`msj_in_steps`) or in one stage; α, β, ξ
+  double target_msj = 1.;
+  bool msj_in_steps = true;
+  double msj_alpha = 1000., msj_beta = 1000., msj_xi = 0.6;
+};
+
 } // namespace Hexahedral_mesh_optimization
 
 #ifdef CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION
@@ -81,6 +105,7 @@ CGAL_HMO_PUBLIC_PARAMETER(stop_flag)
 CGAL_HMO_PUBLIC_PARAMETER(target_msj)
 CGAL_HMO_PUBLIC_PARAMETER(surface_tolerance)
 CGAL_HMO_PUBLIC_PARAMETER(method)
+CGAL_HMO_PUBLIC_PARAMETER(paper_recipe)
 CGAL_HMO_PUBLIC_PARAMETER(volume_tolerance)
 CGAL_HMO_PUBLIC_PARAMETER(outside_tolerance)
 
@@ -144,7 +169,7 @@ namespace internal {
 
 #define CGAL_HMO_PARAMETER_LIST(X) \
   X(reference_surface) X(reference_vertex_point_map) X(sharp_angle) X(reference_feature_angle) X(time_limit) X(stop_flag) \
-  X(target_msj) X(surface_tolerance) X(method) X(volume_tolerance) X(outside_tolerance)
+  X(target_msj) X(surface_tolerance) X(method) X(paper_recipe) X(volume_tolerance) X(outside_tolerance)
 
 /// What the package's free functions of `CGAL::parameters` return: CGAL's
 /// named parameters (every function that takes them takes these), with the

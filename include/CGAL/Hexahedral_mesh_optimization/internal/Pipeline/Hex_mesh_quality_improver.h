@@ -92,6 +92,10 @@ struct Quality_settings
   double xi = 0.6;
   int local_iterations = 20;
   bool pull_back = true;
+  /// the paper's recipe: the pull-back runs whatever the surface error and
+  /// pulls the boundary toward the input's own vertices, as the authors'
+  /// SLIM step does (without a reference surface only); its result is kept
+  bool pull_back_to_input = false;
   bool asj_smoothing = true;
   /// largest surface error allowed to the boundary moves of the quality
   /// stages, relative to the reference's bounding-box diagonal
@@ -171,7 +175,7 @@ public:
     Run_state st(mesh, res);
     set_up(st, original);
     const std::vector<Vec3> normalized_input = mesh.points;
-    if(m_s.pull_back && !stopped()) pull_back_stage(st); // around what is inverted, if anything (see Pull_back.h)
+    if(m_s.pull_back && !stopped()) pull_back_stage(st, original); // around what is inverted, if anything (see Pull_back.h)
     if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
     if(!stopped()) surface_guard_set_up(st, original);
     if(m_s.restore_before_msj_stages && !stopped() && restoration_stage(st) > 0) st.current_error = -1.;
@@ -745,13 +749,21 @@ private:
   /// on a mesh whose boundary slid along a curved surface, or whose feature
   /// classification is noisy, reaching them can raise the Hausdorff
   /// distance to the reference.
-  void pull_back_stage(Run_state& st)
+  void pull_back_stage(Run_state& st, const Hex_mesh_arrays& original)
   {
     const double error_before = measure_error(st);
-    if(error_before <= m_s.surface_tolerance) return;
+    const bool to_input = m_s.pull_back_to_input && !user_reference();
+    if(error_before <= m_s.surface_tolerance && !to_input) return;
     const auto t = Clock::now();
     std::vector<Boundary_constraint> bc;
     st.ts->update_constraints(st.mesh.points, bc);
+    std::vector<Vec3> input_anchors;
+    if(to_input)
+    {
+      input_anchors.reserve(original.points.size());
+      for(const Vec3& p : original.points) input_anchors.push_back(st.nz.apply(p));
+      for(std::size_t v : st.ts->boundary().vertices) bc[v].anchor = input_anchors[v];
+    }
     double far = 0.;
     for(std::size_t v : st.ts->boundary().vertices) far = (std::max)(far, norm(st.mesh.points[v] - bc[v].anchor));
     if(!(far > 0.01 * 0.025)) return;
@@ -759,10 +771,11 @@ private:
     Pull_back_settings ps;
     ps.max_iterations = m_s.schedule.pull_back_iterations;
     ps.time_limit = m_s.time_limit;
+    if(to_input) ps.fixed_anchors = &input_anchors;
     const std::vector<Vec3> before = st.mesh.points;
     const Pull_back_report pr = pull_back_to_target(*st.topo, *st.ts, st.mesh.points, ps);
     const double error_after = measure_error(st);
-    const bool kept = error_after < error_before;
+    const bool kept = error_after < error_before || to_input;
     if(!kept)
     {
       st.mesh.points = before;
@@ -802,7 +815,7 @@ private:
     double msj = quality_statistics(st.mesh).msj;
     for(int k = 0; !stopped(); ++k)
     {
-      double t = k * sc.msj_stage_step;
+      double t = sc.msj_stage_target(k);
       if(t > target) t = target;
       if(msj > t && t < target) continue;
       const auto t0 = Clock::now();
@@ -835,7 +848,8 @@ private:
         const double msj_pass = msj;
         const Local_optimizer_report r = edge_angle_pass(st, t, msj, guard_tolerance, sr.name);
         sr.rounds += r.rounds;
-        const std::size_t projected = project_boundary(st, guard_tolerance, msj);
+        const std::size_t projected =
+          project_boundary(st, guard_tolerance, sc.msj_stage_projection_at_target ? t : msj);
         d << "; edge-angle: below " << t << " " << r.bad_before << " -> " << r.bad_after << " in " << r.rounds
           << " rounds, " << projected << " boundary vertices projected back; ";
         smooth();
@@ -869,7 +883,22 @@ private:
                           ts.update_constraints(p, bc);
                         },
                         ts.mean_boundary_edge_length());
-    opt.on_round = [&](int r, std::size_t left) { m_visitor.round_finished(stage, r, left); };
+    // (the paper's schedule: the rounds may go below the MSJ they started
+    // from, and the pass ends in the best state of its rounds)
+    const bool keep_best = m_s.schedule.msj_stage_keep_best;
+    std::vector<Vec3> best;
+    double best_msj = floor;
+    if(keep_best) best = st.mesh.points;
+    opt.on_round = [&](int r, std::size_t left) {
+      m_visitor.round_finished(stage, r, left);
+      if(!keep_best) return;
+      const double now = quality_statistics(st.mesh).msj;
+      if(now > best_msj)
+      {
+        best_msj = now;
+        best = st.mesh.points;
+      }
+    };
     opt.accept_step = [&](const Local_region& region, const std::vector<Vec3>& before, std::vector<Vec3>& p) {
       return surface_kept(ts.boundary(), guard, guard_tolerance, region, before, p);
     };
@@ -881,8 +910,10 @@ private:
     ls.local_iterations = m_s.local_iterations;
     ls.max_rounds = m_s.schedule.msj_stage_rounds;
     ls.time_limit = m_s.time_limit;
-    ls.min_sj_floor = floor;
-    return opt.run(st.mesh.points, ls);
+    ls.min_sj_floor = keep_best ? 0. : floor;
+    const Local_optimizer_report r = opt.run(st.mesh.points, ls);
+    if(keep_best) st.mesh.points = best;
+    return r;
   }
 
   /// whether a step of the edge-angle optimiser on `region` (free vertices

@@ -70,6 +70,9 @@ struct Untangle_settings
   int local_iterations = 20;
   int max_rounds = 60;
   bool barrier_fallback = true;
+  /// the edge-angle stage on the whole mesh at once (the paper's global
+  /// variant) instead of on the 2-ring regions of the inverted elements
+  bool global_region = false;
   /// the run's hard stop (null: none); it is not the schedule's business
   const Time_limit* time_limit = nullptr;
   /// work caps and convergence thresholds of every stage
@@ -235,6 +238,9 @@ class Hex_mesh_untangler
 public:
   Hex_mesh_untangler(const Untangle_settings& s, Visitor& visitor) : m_s(s), m_visitor(visitor) {}
 
+  /// α at the end of the last edge-angle stage (its start value if none ran)
+  double final_alpha() const { return m_final_alpha; }
+
   /// Untangles `mesh` in place. `measure_surface_error`: whether the result
   /// gets the surface error (the quality pipeline measures it itself).
   Optimization_result run(Hex_mesh_arrays& mesh, bool measure_surface_error = true)
@@ -361,8 +367,11 @@ private:
     // optimiser stalls on)
     ls.max_region_hexes = sc.edge_angle_max_region_hexes;
     ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
+    // (rings past the mesh's diameter: one region, all its connected hexes)
+    if(m_s.global_region) ls.rings = ls.max_rings = static_cast<int>(mesh.hexes.size());
     Stage_report sr = begin_stage("edge-angle");
     const Local_optimizer_report r = opt.run(mesh.points, ls);
+    m_final_alpha = r.final_alpha;
     sr.rounds = r.rounds;
     std::ostringstream d;
     d << r.accepted_steps << " steps accepted, " << r.rolled_back_steps << " rolled back; alpha = "
@@ -498,6 +507,7 @@ private:
   Visitor& m_visitor;
   /// the inverted count of the current state, from the last count or stage report
   std::size_t m_inverted = 0;
+  double m_final_alpha = m_s.alpha;
 };
 
 } // namespace internal

@@ -147,11 +147,27 @@ struct Optimization_schedule
   /// rounds. Default 0: the turns below raise the MSJ as high or higher in
   /// less time; the paper's method runs them.
   double msj_stage_step = 0.1;
+  /// above this target the MSJ stages step by `msj_stage_fine_step` (the
+  /// paper's scripts: 0.1 … 0.4, then 0.45, 0.5, …); 2: never
+  double msj_stage_fine_from = 2.;
+  double msj_stage_fine_step = 0.05;
   double msj_stage_min_gain = 0.005;
   int msj_stage_edge_angle_passes = 0;
   /// the passes of the paper's schedule, and of `edge_angle_stages(true)`
   static constexpr int paper_msj_stage_edge_angle_passes = 8;
   int msj_stage_rounds = 3;
+  /// the projection after an edge-angle pass keeps every element at or above
+  /// the stage's target, not only above the MSJ (the paper's steps accept a
+  /// state only above their target: a projection that pushes elements back
+  /// under it undoes the pass)
+  bool msj_stage_projection_at_target = false;
+  /// the edge-angle passes of the MSJ stages may go below the MSJ they
+  /// started from (never below 0) and end in the best state of their rounds,
+  /// as the authors' optimiser keeps its best iteration; false: every step
+  /// that lowers a region's minimum under the stage's MSJ is rolled back
+  bool msj_stage_keep_best = false;
+  /// the rounds of the paper's schedule: the outer iterations of its scripts
+  static constexpr int paper_msj_stage_rounds = 20;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
   /// while a run ends above the tolerance, at most `msj_guard_retries` runs
   /// again, each with the bound times `msj_guard_retry_factor` (0.9, 0.75,
@@ -246,6 +262,16 @@ struct Optimization_schedule
   /// check: much faster, for a small loss of ASJ).
   bool final_asj_moves_boundary = false;
 
+  /// the target of MSJ stage k (0, 1, …): k steps, the fine ones past
+  /// `msj_stage_fine_from`
+  double msj_stage_target(int k) const
+  {
+    const double coarse = k * msj_stage_step;
+    if(!(coarse > msj_stage_fine_from)) return coarse;
+    const int last_coarse = static_cast<int>(msj_stage_fine_from / msj_stage_step + 1e-9);
+    return last_coarse * msj_stage_step + (k - last_coarse) * msj_stage_fine_step;
+  }
+
   /// The method of Xu & Chen (2018) alone: edge-angle untangling with
   /// relaxation (Algorithm 1, no hand-over to the barrier), the SLIM
   /// pull-back, MSJ stages by the edge-angle optimiser with the boundary
@@ -268,6 +294,10 @@ struct Optimization_schedule
     s.final_asj_global_iterations = 0;
     s.crease_seed_angle = 180.;
     s.coarse_level_start = false;
+    s.msj_stage_fine_from = 0.4;
+    s.msj_stage_rounds = paper_msj_stage_rounds;
+    s.msj_stage_projection_at_target = true;
+    s.msj_stage_keep_best = true;
     return s;
   }
 };

@@ -51,7 +51,7 @@ inline std::vector<Local_region> extract_local_regions(const Hex_mesh_topology& 
   std::vector<std::size_t> front(bad.begin(), bad.end());
   for(std::size_t h : bad) { in_region[h] = 1; is_bad[h] = 1; }
   std::vector<char> vertex_seen(nv, 0);
-  for(int r = 0; r < rings; ++r)
+  for(int r = 0; r < rings && !front.empty(); ++r)
   {
     std::vector<std::size_t> next;
     for(std::size_t h : front)

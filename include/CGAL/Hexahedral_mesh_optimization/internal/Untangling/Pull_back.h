@@ -194,6 +194,10 @@ struct Pull_back_settings
   int stall_iterations = 4;
   /// called after every accepted step (never with an invalid mesh)
   std::function<void(const Pull_back_step&)> on_step;
+  /// when given, each boundary vertex is pulled toward its own position in
+  /// this array (held like a corner), not toward its projection onto the
+  /// target surface: the paper's SLIM pull-back aims at the input's vertices
+  const std::vector<Vec3>* fixed_anchors = nullptr;
 };
 
 struct Pull_back_report
@@ -437,7 +441,7 @@ private:
   // distance of every boundary vertex to its anchor (0 for interior ones); returns the max
   double distances(const std::vector<Vec3>& points, std::vector<double>& dist)
   {
-    m_ts.update_constraints(points, m_bc);
+    update_anchors(points);
     dist.assign(points.size(), 0.);
     double m = 0., sum = 0.;
     for(std::size_t v : m_ts.boundary().vertices)
@@ -448,6 +452,19 @@ private:
     }
     m_mean_dist = sum / double((std::max)(std::size_t(1), m_ts.boundary().vertices.size()));
     return m;
+  }
+
+  /// the boundary constraints at `points`: the target surface's, or the
+  /// fixed anchors (`Pull_back_settings::fixed_anchors`)
+  void update_anchors(const std::vector<Vec3>& points)
+  {
+    m_ts.update_constraints(points, m_bc);
+    if(!m_s.fixed_anchors) return;
+    for(std::size_t v : m_ts.boundary().vertices)
+    {
+      m_bc[v].type = Vertex_class::corner;
+      m_bc[v].anchor = (*m_s.fixed_anchors)[v];
+    }
   }
 
   M3 constraint_metric(const Boundary_constraint& c) const
@@ -886,7 +903,7 @@ private:
       }
       return true;
     };
-    m_ts.update_constraints(points, m_bc);
+    update_anchors(points);
     const std::vector<std::size_t>& bv = m_ts.boundary().vertices;
     {
       const std::vector<Vec3> saved = points;
@@ -898,7 +915,7 @@ private:
     }
     for(int sweep = 0; sweep < 3; ++sweep)
     {
-      m_ts.update_constraints(points, m_bc);
+      update_anchors(points);
       bool all = true;
       for(std::size_t v : bv)
       {
