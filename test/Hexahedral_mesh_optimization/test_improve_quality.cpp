@@ -294,7 +294,10 @@ static void test_pipeline_on_tangled_mesh()
   // the untangling stages come first, the quality stages after
   HMO_CHECK(!r.stages.empty());
   HMO_CHECK(r.stages.front().name == "interior");
-  HMO_CHECK(r.stages.back().name == "asj");
+  // ... the final ASJ smoothing, then the projection onto the surface (and its check, when undone)
+  std::size_t last = r.stages.empty() ? 0 : r.stages.size() - 1;
+  if(last > 0 && r.stages[last].name == "check") --last;
+  HMO_CHECK(last > 0 && r.stages[last].name == "projection" && r.stages[last - 1].name == "asj");
   HMO_CHECK(CGAL::hex_mesh_surface_error(m, input) <= 0.01);
 }
 
