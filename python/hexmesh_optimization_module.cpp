@@ -174,24 +174,30 @@ py::tuple read_mesh(const py::object& path)
   return py::make_tuple(points_array(mesh), hexes_array(mesh));
 }
 
+/// the per-hexahedron fields of a `cell_data` dict (None: no field), one
+/// number per hexahedron each
+CGAL::IO::Hex_mesh_fields cell_fields(const py::object& cell_data, std::size_t hexahedra)
+{
+  CGAL::IO::Hex_mesh_fields fields;
+  if(cell_data.is_none()) return fields;
+  for(const auto& item : py::cast<py::dict>(cell_data))
+  {
+    const std::string name = py::str(item.first);
+    const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
+    if(!values || values.ndim() != 1 || std::size_t(values.shape(0)) != hexahedra)
+      raise(PyExc_ValueError, "cell_data['" + name + "']: expected one number per hexahedron (" +
+                                std::to_string(hexahedra) + ")");
+    fields.cell_scalars.push_back({name, std::vector<double>(values.data(), values.data() + values.shape(0))});
+  }
+  return fields;
+}
+
 void write_mesh(const py::object& path, const py::array& points, const py::array& hexes, const py::object& cell_data,
                 const py::object& format)
 {
   const std::string fname = path_string(path);
   const Mesh mesh = mesh_from_arrays(points, hexes);
-  CGAL::IO::Hex_mesh_fields fields;
-  if(!cell_data.is_none())
-  {
-    for(const auto& item : py::cast<py::dict>(cell_data))
-    {
-      const std::string name = py::str(item.first);
-      const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
-      if(!values || values.ndim() != 1 || std::size_t(values.shape(0)) != mesh.hexahedra.size())
-        raise(PyExc_ValueError, "cell_data['" + name + "']: expected one number per hexahedron (" +
-                                  std::to_string(mesh.hexahedra.size()) + ")");
-      fields.cell_scalars.push_back({name, std::vector<double>(values.data(), values.data() + values.shape(0))});
-    }
-  }
+  const CGAL::IO::Hex_mesh_fields fields = cell_fields(cell_data, mesh.hexahedra.size());
   CGAL::IO::Hex_mesh_io_error error;
   bool written = false;
   if(!format.is_none())
@@ -274,17 +280,7 @@ void write_mesh_file(const Mesh_file& f, const py::object& path, const py::array
   if(moved.points.size() != mesh.points.size())
     raise(PyExc_ValueError, "points: expected " + std::to_string(mesh.points.size()) + " points");
   mesh.points = moved.points;
-  CGAL::IO::Hex_mesh_fields fields;
-  if(!cell_data.is_none())
-    for(const auto& item : py::cast<py::dict>(cell_data))
-    {
-      const std::string name = py::str(item.first);
-      const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
-      if(!values || values.ndim() != 1 || std::size_t(values.shape(0)) != mesh.hexahedra.size())
-        raise(PyExc_ValueError, "cell_data['" + name + "']: expected one number per hexahedron (" +
-                                  std::to_string(mesh.hexahedra.size()) + ")");
-      fields.cell_scalars.push_back({name, std::vector<double>(values.data(), values.data() + values.shape(0))});
-    }
+  const CGAL::IO::Hex_mesh_fields fields = cell_fields(cell_data, mesh.hexahedra.size());
   CGAL::IO::Hex_mesh_io_error error;
   if(!CGAL::IO::write_hex_mesh_as(ff, fname, mesh, fields, &error))
     raise(PyExc_OSError, error.what());
