@@ -340,6 +340,32 @@ private:
   std::vector<std::size_t> m_vbf_off, m_vbf; // boundary faces around each vertex
 };
 
+/// The minimum scaled Jacobian of the hexes around vertex `v` with `v` at
+/// `x` (the other vertices at `points`): the local test of every one-vertex
+/// move that must keep an SJ floor (max-min smoothing, snaps, projections).
+inline double min_scaled_jacobian_around(const Hex_mesh_topology& topo, const std::vector<Vec3>& points,
+                                         std::size_t v, const Vec3& x)
+{
+  double m = 2.;
+  for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+  {
+    std::array<Vec3, 8> p;
+    for(int i = 0; i < 8; ++i) p[i] = points[topo.hexes()[c->hex][i]];
+    p[c->local] = x;
+    m = (std::min)(m, scaled_jacobian(p));
+  }
+  return m;
+}
+
+/// whether the hexes around `v`, with `v` at `x`, keep a scaled Jacobian
+/// at or above `floor` and above 0 (false on NaN, as a zero-length edge gives)
+inline bool keeps_sj_floor_around(const Hex_mesh_topology& topo, const std::vector<Vec3>& points, std::size_t v,
+                                  const Vec3& x, double floor)
+{
+  const double m = min_scaled_jacobian_around(topo, points, v, x);
+  return m >= floor && m > 0.;
+}
+
 } // namespace internal
 } // namespace Hexahedral_mesh_optimization
 } // namespace CGAL

@@ -531,12 +531,17 @@ private:
   {
     const auto t = Clock::now();
     m_visitor.stage_started("projection", 0);
-    if(st.current_error < 0.) measure_error(st);
-    const std::vector<Vec3> saved = st.mesh.points;
-    const double saved_error = st.current_error;
+    std::vector<Vec3> saved = st.mesh.points;
     const Quality_statistics q = quality_statistics(st.mesh);
     const Final_projection_report r =
       project_boundary_onto_target(*st.topo, *st.ts, st.mesh.points, q.msj, m_s.schedule.final_projection_sweeps);
+    if(r.projected > 0 && st.current_error < 0.) // the error before, for the bound: measured only when needed
+    {
+      std::swap(st.mesh.points, saved);
+      measure_error(st);
+      std::swap(st.mesh.points, saved);
+    }
+    const double saved_error = st.current_error;
     std::ostringstream d;
     d << r.projected << " boundary vertices moved onto the target surface, " << r.left
       << " left off it (the move would lower the MSJ; largest distance "

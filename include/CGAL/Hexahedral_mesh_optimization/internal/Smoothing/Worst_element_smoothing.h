@@ -229,14 +229,7 @@ public:
   /// the minimum scaled Jacobian of the hexes around `v` with `v` at `x`
   double local_minimum(const std::vector<Vec3>& points, std::size_t v, const Vec3& x) const
   {
-    double m = 2.;
-    for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-    {
-      std::array<Vec3, 8> p = corners(points, c->hex);
-      p[c->local] = x;
-      m = (std::min)(m, scaled_jacobian(p));
-    }
-    return m;
+    return min_scaled_jacobian_around(m_topo, points, v, x);
   }
 
   /// Element moves stall where the elements at the minimum form a cluster

@@ -49,20 +49,6 @@ inline Final_projection_report project_boundary_onto_target(const Hex_mesh_topol
                                                             std::vector<Vec3>& points, double floor, int sweeps)
 {
   Final_projection_report rep;
-  const auto& hexes = topo.hexes();
-  auto corners = [&](std::size_t h) {
-    std::array<Vec3, 8> p;
-    for(int i = 0; i < 8; ++i) p[i] = points[hexes[h][i]];
-    return p;
-  };
-  auto around_ok = [&](std::size_t v) {
-    for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
-    {
-      const double sj = scaled_jacobian(corners(c->hex));
-      if(!(sj >= floor) || !(sj > 0.)) return false;
-    }
-    return true;
-  };
   const std::vector<std::size_t>& bv = ts.boundary().vertices;
   std::vector<char> done(points.size(), 0);
   for(int sweep = 0; sweep < sweeps; ++sweep)
@@ -74,9 +60,11 @@ inline Final_projection_report project_boundary_onto_target(const Hex_mesh_topol
       const Vec3 p = points[v];
       const Vec3 anchor = ts.constraint_at(v, p).anchor;
       if(squared_norm(anchor - p) == 0.) { done[v] = 1; continue; }
+      if(!keeps_sj_floor_around(topo, points, v, anchor, floor)) continue;
       points[v] = anchor;
-      if(around_ok(v)) { done[v] = 1; ++rep.projected; moved = true; }
-      else points[v] = p;
+      done[v] = 1;
+      ++rep.projected;
+      moved = true;
     }
     if(!moved) break;
   }

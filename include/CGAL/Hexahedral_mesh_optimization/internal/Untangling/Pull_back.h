@@ -893,16 +893,8 @@ private:
   void try_snap(std::vector<Vec3>& points, Pull_back_report& rep)
   {
     if(!m_s.snap) return;
-    const auto& hexes = m_topo.hexes();
     const double floor = m_snap_floor;
-    auto local_ok = [&](std::size_t v) {
-      for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
-      {
-        const double sj = scaled_jacobian(corners(points, hexes[c->hex]));
-        if(!(sj >= floor) || !(sj > 0.)) return false;
-      }
-      return true;
-    };
+    auto local_ok = [&](std::size_t v) { return keeps_sj_floor_around(m_topo, points, v, points[v], floor); };
     update_anchors(points);
     const std::vector<std::size_t>& bv = m_ts.boundary().vertices;
     {
