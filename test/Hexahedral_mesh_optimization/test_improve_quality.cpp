@@ -226,7 +226,7 @@ static void test_turn_focus_band()
     for(const double bad : {-0.1, 11., nan}) refused("xi", through(add_internal_parameter(CGAL::parameters::default_values(), INP::xi, bad)));
     refused("local_iterations", through(add_internal_parameter(CGAL::parameters::default_values(), INP::local_iterations, 0)));
     refused("number_of_iterations", through(CGAL::parameters::number_of_iterations(-1)));
-    for(const double bad : {-1., nan}) refused("time_limit", through(CGAL::parameters::time_limit(bad)));
+    for(const double bad : {-1., nan}) refused("maximum_running_time", through(CGAL::parameters::maximum_running_time(bad)));
   }
   for(const double bad : {-1., 181., nan})
     refused("crease_seed_angle", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, add_internal_parameter(CGAL::parameters::default_values(), INP::crease_seed_angle, bad)); });
