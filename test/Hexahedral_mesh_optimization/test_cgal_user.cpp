@@ -289,6 +289,95 @@ void test_reference_maps()
   HMO_CHECK(with.sharp_edges == 13);
 }
 
+/// A model of `HexMeshOptimizationTraits` over EPICK's points (not a
+/// kernel) whose functors count their calls in `counts`: a function that
+/// reads or writes the points without the traits given as `geom_traits`
+/// (the kernel of the point type instead, or a default-constructed copy of
+/// these traits, whose `counts` is null) leaves the counts at 0.
+struct Counting_traits
+{
+  typedef IK::FT FT;
+  typedef IK::Point_3 Point_3;
+  struct Counts
+  {
+    std::size_t reads = 0, constructions = 0;
+  };
+  Counts* counts = nullptr;
+
+  template <int I>
+  struct Compute_coordinate
+  {
+    Counts* counts;
+    FT operator()(const Point_3& p) const
+    {
+      if(counts) ++counts->reads;
+      return p[I];
+    }
+  };
+  typedef Compute_coordinate<0> Compute_x_3;
+  typedef Compute_coordinate<1> Compute_y_3;
+  typedef Compute_coordinate<2> Compute_z_3;
+  struct Construct_point_3
+  {
+    Counts* counts;
+    Point_3 operator()(const FT& x, const FT& y, const FT& z) const
+    {
+      if(counts) ++counts->constructions;
+      return Point_3(x, y, z);
+    }
+  };
+  Compute_x_3 compute_x_3_object() const { return {counts}; }
+  Compute_y_3 compute_y_3_object() const { return {counts}; }
+  Compute_z_3 compute_z_3_object() const { return {counts}; }
+  Construct_point_3 construct_point_3_object() const { return {counts}; }
+};
+
+/// geom_traits: the points of the mesh are read through the traits given
+/// (x, y and z of every vertex) and the moved ones written through its
+/// Construct_point_3, one construction per moved vertex, by the quality
+/// measures, untangle_hex_mesh() and improve_hex_mesh_quality()
+void test_geom_traits()
+{
+  Gmap_lcc lcc;
+  make_tangled_grid(lcc);
+  const std::size_t nv = lcc.vertex_attributes().size();
+  Counting_traits::Counts counts;
+  Counting_traits gt;
+  gt.counts = &counts;
+
+  const std::vector<Gmap_lcc::Point> corners = {IK::Point_3(0, 0, 0), IK::Point_3(1, 0, 0), IK::Point_3(1, 1, 0),
+                                                IK::Point_3(0, 1, 0), IK::Point_3(0, 0, 1), IK::Point_3(1, 0, 1),
+                                                IK::Point_3(1, 1, 1), IK::Point_3(0, 1, 1)};
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(corners, CGAL::parameters::geom_traits(gt)), 1., 1e-12);
+  HMO_CHECK(counts.reads == 3 * 8 && counts.constructions == 0);
+
+  counts = Counting_traits::Counts();
+  const CGAL::Hex_mesh_quality q = CGAL::hex_mesh_quality(lcc, CGAL::parameters::geom_traits(gt));
+  HMO_CHECK(q.hexes == 27 && q.inverted > 0);
+  HMO_CHECK(counts.reads == 3 * nv && counts.constructions == 0);
+
+  auto moved_between = [](const std::vector<Gmap_lcc::Point>& a, const std::vector<Gmap_lcc::Point>& b) {
+    std::size_t n = 0;
+    for(std::size_t i = 0; i < a.size(); ++i) n += a[i] != b[i] ? 1 : 0;
+    return n;
+  };
+  counts = Counting_traits::Counts();
+  const auto input = points_of(lcc);
+  const auto ru = CGAL::untangle_hex_mesh(lcc, CGAL::parameters::maximum_running_time(60).geom_traits(gt));
+  HMO_CHECK(ru.inverted_before > 0 && ru.inverted_after == 0);
+  const auto untangled = points_of(lcc);
+  const std::size_t moved = moved_between(input, untangled);
+  HMO_CHECK(moved > 0);
+  HMO_CHECK(counts.reads == 3 * nv);
+  HMO_CHECK(counts.constructions == moved);
+
+  counts = Counting_traits::Counts();
+  const auto ri = CGAL::improve_hex_mesh_quality(lcc, CGAL::parameters::target_msj(0.9).geom_traits(gt));
+  HMO_CHECK(ri.inverted_after == 0);
+  HMO_CHECK(counts.reads == 3 * nv);
+  HMO_CHECK(counts.constructions == moved_between(untangled, points_of(lcc)));
+}
+
 /// Mesh_3 and the package in one translation unit: Mesh_3's
 /// `CGAL::parameters::time_limit` (CGAL 5.5: a Boost.Parameter keyword) still
 /// names Mesh_3's keyword, and the package's time limit, CGAL's
@@ -313,6 +402,7 @@ HMO_TEST_MAIN(test_cgal_user)
   HMO_CASE(test_all_constrained());
   HMO_CASE(test_vertex_point_map());
   HMO_CASE(test_reference_maps());
+  HMO_CASE(test_geom_traits());
   HMO_CASE(test_with_mesh_3());
   return hmo_test::report(argv[0]);
 }
