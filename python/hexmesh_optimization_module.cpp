@@ -630,8 +630,8 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                            .target_msj(o.target_msj)
                            .surface_tolerance(o.surface_tolerance)
                            .method(o.method)
-                           .time_limit(o.time_limit)
                            .stop_flag(&stop)
+                           .maximum_running_time(o.time_limit) // CGAL's, after the package's (parameters.h)
                            .number_of_iterations(o.number_of_iterations)
                            .visitor(std::ref(visitor));
   // the schedule's settings the binding exposes (not public C++ API)
@@ -709,7 +709,8 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "Keyword options (the named parameters of the C++ functions, same names and defaults): sharp_angle,\n"
     "reference_feature_angle, alpha, beta, xi, relax_surface, local_iterations, number_of_iterations,\n"
     "barrier_fallback, "
-    "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop; None: none),\n"
+    "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop, CGAL's\n"
+    "maximum_running_time in C++; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +
     ", and target_msj, pull_back, asj_smoothing, edge_angle_stages, coarse_level_start, crease_seed_angle,\n"

@@ -191,13 +191,13 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
         << " hexahedra)\n";
   const auto public_np = CGAL::parameters::sharp_angle(options.sharp_angle)
                            .reference_feature_angle(options.reference_feature_angle)
-                           .time_limit(time_limit)
                            .stop_flag(&stop_requested)
                            .target_msj(options.target_msj)
                            .surface_tolerance(options.surface_tolerance)
                            .method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                                         : CGAL::Hexahedral_mesh_optimization::Method::package)
                            .paper_recipe(options.paper_recipe)
+                           .maximum_running_time(time_limit) // CGAL's, after the package's (parameters.h)
                            .visitor(std::ref(visitor));
   // the schedule's settings the tool's options expose (not public API)
   const auto np = HMOI::add_internal_parameter(

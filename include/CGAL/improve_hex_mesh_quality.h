@@ -302,13 +302,13 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamType{`Hexahedral_mesh_optimization::Method`}
     \cgalParamDefault{`Method::package`}
   \cgalParamNEnd
-  \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine. It is at least 0 (`std::invalid_argument` otherwise).}
+  \cgalParamNBegin{maximum_running_time}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state that passed its surface check (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) every stage runs to convergence or to its work cap, and the same input gives the same output on any machine. It is at least 0 (`std::invalid_argument` otherwise). It is CGAL's own named parameter `CGAL::parameters::maximum_running_time` (the package declares no `time_limit`: CGAL 5.5's Mesh_3 headers declare `CGAL::parameters::time_limit` as a Boost.Parameter keyword; from CGAL 5.6 on, CGAL's `time_limit` is another name of the same parameter).}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{stop_flag}
-    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state that passed its checks, never worse than the input), and the result's `interrupted` is true}
+    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `maximum_running_time` (every stage stops at its next safe point, the mesh returned is the last state that passed its checks, never worse than the input), and the result's `interrupted` is true}
     \cgalParamType{`const std::atomic<bool>*`}
     \cgalParamDefault{none}
   \cgalParamNEnd
@@ -365,7 +365,7 @@ when it has inverted elements), then improves it (`improve_hex_mesh_quality()`:
 pull-back, MSJ stages, ASJ smoothing), the surface error being measured
 against the input's boundary (or the reference surface) throughout.
 
-It takes the named parameters of both functions; `time_limit` is a hard stop
+It takes the named parameters of both functions; `maximum_running_time` is a hard stop
 for the whole pipeline (default: none). The result's stages list both parts
 in order.
 */

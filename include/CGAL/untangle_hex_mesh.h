@@ -217,13 +217,13 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamType{`Hexahedral_mesh_optimization::Method`}
     \cgalParamDefault{`Method::package`}
   \cgalParamNEnd
-  \cgalParamNBegin{time_limit}
-    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence. It is at least 0 (`std::invalid_argument` otherwise).}
+  \cgalParamNBegin{maximum_running_time}
+    \cgalParamDescription{a hard stop, in seconds of wall-clock time from the call: when it is reached every stage stops at its next safe point, the mesh returned is the last state reached (never worse than the input) and the result's `time_limit_reached` is true. It decides nothing else: without it (the default) the stages run to convergence. It is at least 0 (`std::invalid_argument` otherwise). It is CGAL's own named parameter `CGAL::parameters::maximum_running_time` (the package declares no `time_limit`: CGAL 5.5's Mesh_3 headers declare `CGAL::parameters::time_limit` as a Boost.Parameter keyword; from CGAL 5.6 on, CGAL's `time_limit` is another name of the same parameter).}
     \cgalParamType{`double`}
     \cgalParamDefault{none}
   \cgalParamNEnd
   \cgalParamNBegin{stop_flag}
-    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `time_limit` (every stage stops at its next safe point, the mesh returned is the last state reached, never worse than the input), and the result's `interrupted` is true}
+    \cgalParamDescription{a flag another thread or a signal handler may set to stop the run: it is then a hard stop like `maximum_running_time` (every stage stops at its next safe point, the mesh returned is the last state reached, never worse than the input), and the result's `interrupted` is true}
     \cgalParamType{`const std::atomic<bool>*`}
     \cgalParamDefault{none}
   \cgalParamNEnd

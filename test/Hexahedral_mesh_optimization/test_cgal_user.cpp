@@ -5,13 +5,18 @@
 // (combinatorial map over an exact kernel, generalized map, custom items)
 // through untangle_hex_mesh(), improve_hex_mesh_quality() and
 // hex_mesh_quality(), with chained CGAL::parameters among which CGAL's own
-// vertex_is_constrained_map, vertex_point_map and geom_traits.
+// vertex_is_constrained_map, vertex_point_map and geom_traits, in a
+// translation unit that also includes a Mesh_3 header (CGAL 5.5's
+// CGAL/make_mesh_3.h includes CGAL/boost/parameter.h, whose Boost.Parameter
+// keyword `CGAL::parameters::time_limit` the package's own parameters must
+// not hide: that this file compiles is part of the test).
 // Own translation unit: the exact kernel compiles slowly.
 
 #include "test_util.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/make_mesh_3.h> // before the package's headers, as a Mesh_3 user may include it
 #include <CGAL/Linear_cell_complex_for_combinatorial_map.h>
 #include <CGAL/Linear_cell_complex_for_generalized_map.h>
 #include <CGAL/Hexahedral_mesh_optimization/Linear_cell_complex_hex_mesh.h>
@@ -153,7 +158,7 @@ void test_exact_lcc()
 {
   check_constrained_run<Exact_lcc>(
     [](Exact_lcc& lcc, Constrained_set<Exact_lcc> vcm) {
-      return CGAL::untangle_hex_mesh(lcc, CGAL::parameters::time_limit(60).vertex_is_constrained_map(vcm).geom_traits(EK()));
+      return CGAL::untangle_hex_mesh(lcc, CGAL::parameters::maximum_running_time(60).vertex_is_constrained_map(vcm).geom_traits(EK()));
     },
     [](Exact_lcc& lcc, Constrained_set<Exact_lcc> vcm) {
       return CGAL::improve_hex_mesh_quality(
@@ -165,7 +170,7 @@ void test_gmap_lcc()
 {
   check_constrained_run<Gmap_lcc>(
     [](Gmap_lcc& lcc, Constrained_set<Gmap_lcc> vcm) {
-      return CGAL::untangle_hex_mesh(lcc, CGAL::parameters::time_limit(60).vertex_is_constrained_map(vcm));
+      return CGAL::untangle_hex_mesh(lcc, CGAL::parameters::maximum_running_time(60).vertex_is_constrained_map(vcm));
     },
     [](Gmap_lcc& lcc, Constrained_set<Gmap_lcc> vcm) {
       return CGAL::improve_hex_mesh_quality(lcc, CGAL::parameters::surface_tolerance(0.01).vertex_is_constrained_map(vcm));
@@ -223,7 +228,7 @@ void test_vertex_point_map()
   const std::vector<IK::Point_3> own = m.points;
   const auto vpm = CGAL::make_property_map(positions);
   HMO_CHECK(CGAL::hex_mesh_quality(m, CGAL::parameters::vertex_point_map(vpm)).inverted > 0);
-  const auto r = CGAL::untangle_hex_mesh(m, CGAL::parameters::time_limit(60).vertex_point_map(vpm));
+  const auto r = CGAL::untangle_hex_mesh(m, CGAL::parameters::maximum_running_time(60).vertex_point_map(vpm));
   HMO_CHECK(r.inverted_before > 0 && r.inverted_after == 0);
   HMO_CHECK(m.points == own);
   HMO_CHECK(CGAL::hex_mesh_quality(m, CGAL::parameters::vertex_point_map(vpm)).inverted == 0);
@@ -284,6 +289,111 @@ void test_reference_maps()
   HMO_CHECK(with.sharp_edges == 13);
 }
 
+/// A model of `HexMeshOptimizationTraits` over EPICK's points (not a
+/// kernel) whose functors count their calls in `counts`: a function that
+/// reads or writes the points without the traits given as `geom_traits`
+/// (the kernel of the point type instead, or a default-constructed copy of
+/// these traits, whose `counts` is null) leaves the counts at 0.
+struct Counting_traits
+{
+  typedef IK::FT FT;
+  typedef IK::Point_3 Point_3;
+  struct Counts
+  {
+    std::size_t reads = 0, constructions = 0;
+  };
+  Counts* counts = nullptr;
+
+  template <int I>
+  struct Compute_coordinate
+  {
+    Counts* counts;
+    FT operator()(const Point_3& p) const
+    {
+      if(counts) ++counts->reads;
+      return p[I];
+    }
+  };
+  typedef Compute_coordinate<0> Compute_x_3;
+  typedef Compute_coordinate<1> Compute_y_3;
+  typedef Compute_coordinate<2> Compute_z_3;
+  struct Construct_point_3
+  {
+    Counts* counts;
+    Point_3 operator()(const FT& x, const FT& y, const FT& z) const
+    {
+      if(counts) ++counts->constructions;
+      return Point_3(x, y, z);
+    }
+  };
+  Compute_x_3 compute_x_3_object() const { return {counts}; }
+  Compute_y_3 compute_y_3_object() const { return {counts}; }
+  Compute_z_3 compute_z_3_object() const { return {counts}; }
+  Construct_point_3 construct_point_3_object() const { return {counts}; }
+};
+
+/// geom_traits: the points of the mesh are read through the traits given
+/// (x, y and z of every vertex) and the moved ones written through its
+/// Construct_point_3, one construction per moved vertex, by the quality
+/// measures, untangle_hex_mesh() and improve_hex_mesh_quality()
+void test_geom_traits()
+{
+  Gmap_lcc lcc;
+  make_tangled_grid(lcc);
+  const std::size_t nv = lcc.vertex_attributes().size();
+  Counting_traits::Counts counts;
+  Counting_traits gt;
+  gt.counts = &counts;
+
+  const std::vector<Gmap_lcc::Point> corners = {IK::Point_3(0, 0, 0), IK::Point_3(1, 0, 0), IK::Point_3(1, 1, 0),
+                                                IK::Point_3(0, 1, 0), IK::Point_3(0, 0, 1), IK::Point_3(1, 0, 1),
+                                                IK::Point_3(1, 1, 1), IK::Point_3(0, 1, 1)};
+  HMO_CHECK_CLOSE(CGAL::hex_scaled_jacobian(corners, CGAL::parameters::geom_traits(gt)), 1., 1e-12);
+  HMO_CHECK(counts.reads == 3 * 8 && counts.constructions == 0);
+
+  counts = Counting_traits::Counts();
+  const CGAL::Hex_mesh_quality q = CGAL::hex_mesh_quality(lcc, CGAL::parameters::geom_traits(gt));
+  HMO_CHECK(q.hexes == 27 && q.inverted > 0);
+  HMO_CHECK(counts.reads == 3 * nv && counts.constructions == 0);
+
+  auto moved_between = [](const std::vector<Gmap_lcc::Point>& a, const std::vector<Gmap_lcc::Point>& b) {
+    std::size_t n = 0;
+    for(std::size_t i = 0; i < a.size(); ++i) n += a[i] != b[i] ? 1 : 0;
+    return n;
+  };
+  counts = Counting_traits::Counts();
+  const auto input = points_of(lcc);
+  const auto ru = CGAL::untangle_hex_mesh(lcc, CGAL::parameters::maximum_running_time(60).geom_traits(gt));
+  HMO_CHECK(ru.inverted_before > 0 && ru.inverted_after == 0);
+  const auto untangled = points_of(lcc);
+  const std::size_t moved = moved_between(input, untangled);
+  HMO_CHECK(moved > 0);
+  HMO_CHECK(counts.reads == 3 * nv);
+  HMO_CHECK(counts.constructions == moved);
+
+  counts = Counting_traits::Counts();
+  const auto ri = CGAL::improve_hex_mesh_quality(lcc, CGAL::parameters::target_msj(0.9).geom_traits(gt));
+  HMO_CHECK(ri.inverted_after == 0);
+  HMO_CHECK(counts.reads == 3 * nv);
+  HMO_CHECK(counts.constructions == moved_between(untangled, points_of(lcc)));
+}
+
+/// Mesh_3 and the package in one translation unit: Mesh_3's
+/// `CGAL::parameters::time_limit` (CGAL 5.5: a Boost.Parameter keyword) still
+/// names Mesh_3's keyword, and the package's time limit, CGAL's
+/// `maximum_running_time`, stops an untangling
+void test_with_mesh_3()
+{
+  const auto exude = CGAL::parameters::exude(CGAL::parameters::time_limit = 7.5, CGAL::parameters::sliver_bound = 12.);
+  HMO_CHECK(exude.time_limit() == 7.5);
+  HMO_CHECK(exude.bound() == 12.);
+  Exact_lcc lcc;
+  make_tangled_grid(lcc);
+  const auto r = CGAL::untangle_hex_mesh(lcc, CGAL::parameters::sharp_angle(160.).maximum_running_time(1e-9));
+  HMO_CHECK(r.time_limit_reached);
+  HMO_CHECK(r.inverted_after > 0 && r.unresolved.size() == r.inverted_after);
+}
+
 HMO_TEST_MAIN(test_cgal_user)
 {
   HMO_CASE(test_exact_lcc());
@@ -292,6 +402,8 @@ HMO_TEST_MAIN(test_cgal_user)
   HMO_CASE(test_all_constrained());
   HMO_CASE(test_vertex_point_map());
   HMO_CASE(test_reference_maps());
+  HMO_CASE(test_geom_traits());
+  HMO_CASE(test_with_mesh_3());
   return hmo_test::report(argv[0]);
 }
 

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -226,7 +227,7 @@ static void test_turn_focus_band()
     for(const double bad : {-0.1, 11., nan}) refused("xi", through(add_internal_parameter(CGAL::parameters::default_values(), INP::xi, bad)));
     refused("local_iterations", through(add_internal_parameter(CGAL::parameters::default_values(), INP::local_iterations, 0)));
     refused("number_of_iterations", through(CGAL::parameters::number_of_iterations(-1)));
-    for(const double bad : {-1., nan}) refused("time_limit", through(CGAL::parameters::time_limit(bad)));
+    for(const double bad : {-1., nan}) refused("maximum_running_time", through(CGAL::parameters::maximum_running_time(bad)));
   }
   for(const double bad : {-1., 181., nan})
     refused("crease_seed_angle", [bad](Mesh& b) { CGAL::improve_hex_mesh_quality(b, add_internal_parameter(CGAL::parameters::default_values(), INP::crease_seed_angle, bad)); });
@@ -664,6 +665,167 @@ static void test_coarse_level_start()
   HMO_CHECK(untouched.points == bent2.points && none_result.stages.empty());
 }
 
+// ------------------------------------------------ constrained vertices, stage by stage
+
+namespace HMOI = CGAL::Hexahedral_mesh_optimization::internal;
+using HMOI::operator+;
+using HMOI::operator*;
+
+/// A visitor of the untangler and of the improver (internal drivers, which
+/// work on the caller's arrays in place, normalised) that watches the
+/// vertices between its events: at every event, a vertex not where it was at
+/// the previous event was moved by the stage the event names. It collects
+/// those stage names for the constrained vertices (`moved_constrained`: must
+/// stay empty) and for the others (`moved_free`: the stages that did move
+/// something). The drivers' final safety net (`restore_unmoved_vertices()`)
+/// comes after the last event, so it cannot hide a stage's move from this.
+struct Constrained_watch : HMO::Default_optimization_visitor
+{
+  const HMOI::Hex_mesh_arrays* mesh = nullptr;
+  std::vector<HMOI::Vec3> last;
+  std::vector<std::string> events;
+  std::set<std::string> moved_constrained, moved_free;
+
+  void look(const std::string& stage)
+  {
+    events.push_back(stage);
+    if(last.size() == mesh->points.size())
+      for(std::size_t v = 0; v < last.size(); ++v)
+        if(mesh->points[v] != last[v]) (mesh->is_constrained(v) ? moved_constrained : moved_free).insert(stage);
+    last = mesh->points;
+  }
+  void stage_started(const std::string& name, std::size_t) { look(name); }
+  void round_finished(const std::string& stage, int, std::size_t) { look(stage); }
+  void stage_finished(const HMO::Stage_report& r) { look(r.name); }
+};
+
+static std::string names(const std::set<std::string>& s)
+{
+  std::string out;
+  for(const std::string& n : s) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+/// the 4 × 4 × 4 grid of unit cubes, every vertex with i + j + k odd
+/// constrained (each free vertex has only constrained neighbours along the
+/// edges), and with `tangled` two free vertices pushed through their
+/// neighbours: (2, 2, 2) past (3, 3, 3), and (1, 1, 2) out through the
+/// boundary face x = 0
+static HMOI::Hex_mesh_arrays constrained_grid(bool tangled)
+{
+  HMOI::Hex_mesh_arrays m = hmo_test::grid(4, 4, 4, 4., 4., 4.);
+  m.constrained.assign(m.points.size(), 0);
+  for(std::size_t v = 0; v < m.points.size(); ++v)
+  {
+    const std::size_t i = v % 5, j = (v / 5) % 5, k = v / 25;
+    m.constrained[v] = (i + j + k) % 2;
+  }
+  if(tangled)
+  {
+    m.points[2 + 5 * 2 + 25 * 2] = HMOI::Vec3{3.4, 3.4, 3.4};
+    m.points[1 + 5 * 1 + 25 * 2] = HMOI::Vec3{-0.4, -0.4, 2.};
+  }
+  return m;
+}
+
+/// the boundary of the box [0, 4]³, two triangles a face
+static void box_reference(std::vector<HMOI::Vec3>& points, std::vector<HMOI::Tri>& triangles)
+{
+  const HMOI::Hex_mesh_arrays cube = hmo_test::grid(1, 1, 1, 4., 4., 4.);
+  HMOI::triangulate_boundary(HMOI::extract_boundary(cube), cube.points, HMOI::Quad_split::diagonal_02, points, triangles);
+}
+
+/// checks a watched run: no stage moved a constrained vertex; the stages
+/// `expected` ran and moved free vertices
+static void check_watch(const Constrained_watch& w, const HMOI::Hex_mesh_arrays& out, const HMOI::Hex_mesh_arrays& in,
+                        const std::vector<std::string>& expected, const char* what)
+{
+  if(!w.moved_constrained.empty())
+    std::cerr << what << ": constrained vertices moved in: " << names(w.moved_constrained) << std::endl;
+  HMO_CHECK(w.moved_constrained.empty());
+  for(const std::string& stage : expected)
+  {
+    if(!w.moved_free.count(stage))
+      std::cerr << what << ": stage " << stage << " moved nothing (stages that did: " << names(w.moved_free) << ")" << std::endl;
+    HMO_CHECK(w.moved_free.count(stage) == 1);
+  }
+  for(std::size_t v = 0; v < in.points.size(); ++v)
+    if(in.is_constrained(v)) HMO_CHECK(out.points[v] == in.points[v]);
+}
+
+/// the untangler's stages with constrained vertices: "interior", then
+/// "edge-angle" alone and "barrier" alone (the schedule's switches), each
+/// with "surface" after it
+static void test_constrained_untangling_stages()
+{
+  struct Run
+  {
+    const char* what;
+    bool interior, edge_angle, barrier;
+    std::vector<std::string> expected;
+  };
+  const Run runs[] = {{"interior", true, false, false, {"interior"}},
+                      {"edge-angle", false, true, false, {"edge-angle"}},
+                      {"barrier", false, false, true, {"barrier"}}};
+  for(const Run& run : runs)
+  {
+    const HMOI::Hex_mesh_arrays input = constrained_grid(true);
+    HMO_CHECK(HMOI::quality_statistics(input).inverted > 0);
+    HMOI::Hex_mesh_arrays m = input;
+    HMOI::Untangle_settings s;
+    s.schedule.interior_stage = run.interior;
+    s.schedule.edge_angle_stage = run.edge_angle;
+    s.schedule.barrier_stage = run.barrier;
+    s.barrier_fallback = run.interior || run.barrier;
+    Constrained_watch w;
+    w.mesh = &m;
+    HMOI::Hex_mesh_untangler<Constrained_watch> untangler(s, w);
+    const HMO::Optimization_result r = untangler.run(m);
+    HMO_CHECK(r.inverted_after < r.inverted_before);
+    HMO_CHECK(std::find(w.events.begin(), w.events.end(), "surface") != w.events.end());
+    check_watch(w, m, input, run.expected, run.what);
+  }
+}
+
+/// the improver's stages with constrained vertices, against the box's
+/// boundary as reference, on the untangled grid with its interior moved at
+/// random and its boundary moved off the reference (the surface fit alone:
+/// test_target_surface)
+static void test_constrained_quality_stages()
+{
+  std::vector<HMOI::Vec3> ref_points;
+  std::vector<HMOI::Tri> ref_triangles;
+  box_reference(ref_points, ref_triangles);
+  const HMOI::Hex_mesh_arrays input = [] {
+    HMOI::Hex_mesh_arrays rough = constrained_grid(false);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1., 1.);
+    for(std::size_t v = 0; v < rough.points.size(); ++v)
+    {
+      const std::size_t i = v % 5, j = (v / 5) % 5, k = v / 25;
+      const int on_faces = (i == 0 || i == 4) + (j == 0 || j == 4) + (k == 0 || k == 4);
+      HMOI::Vec3& p = rough.points[v];
+      if(on_faces == 0) p = p + 0.3 * HMOI::Vec3{u(rng), u(rng), u(rng)};
+      else if(on_faces == 1) // off its face, along the face's normal
+        for(int c = 0; c < 3; ++c)
+          if(p[c] == 0. || p[c] == 4.) p[c] += 0.08 * u(rng);
+    }
+    return rough;
+  }();
+  HMO_CHECK(HMOI::quality_statistics(input).inverted == 0);
+  HMOI::Hex_mesh_arrays m = input;
+  HMOI::Quality_settings s;
+  s.reference_points = &ref_points;
+  s.reference_triangles = &ref_triangles;
+  s.surface_tolerance = 0.002;
+  Constrained_watch w;
+  w.mesh = &m;
+  HMOI::Hex_mesh_quality_improver<Constrained_watch> improver(s, w);
+  improver.run(m, input);
+  check_watch(w, m, input, {"pull-back", "surface restoration", "max-min", "asj", "asj-interior", "projection"},
+              "rough grid");
+}
+
 HMO_TEST_MAIN(test_improve_quality)
 {
   HMO_CASE(test_properties());
@@ -678,6 +840,8 @@ HMO_TEST_MAIN(test_improve_quality)
   HMO_CASE(test_paper_recipe());
   HMO_CASE(test_lcc());
   HMO_CASE(test_coarse_level_start());
+  HMO_CASE(test_constrained_untangling_stages());
+  HMO_CASE(test_constrained_quality_stages());
   return hmo_test::report(argv[0]);
 }
 

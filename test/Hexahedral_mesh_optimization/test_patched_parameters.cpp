@@ -23,8 +23,8 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Indexed_hex_mesh<K::Point_3> Mesh;
 
 // the package reads CGAL's tags
-static_assert(std::is_same<CGAL::hex_mesh_internal_np::time_limit_t, CGAL::internal_np::time_limit_t>::value,
-              "the package's time_limit is CGAL's");
+static_assert(std::is_same<CGAL::hex_mesh_internal_np::stop_flag_t, CGAL::internal_np::stop_flag_t>::value,
+              "the package's stop_flag is CGAL's");
 static_assert(std::is_same<CGAL::hex_mesh_internal_np::sharp_angle_t, CGAL::internal_np::sharp_angle_t>::value,
               "the package's sharp_angle is CGAL's");
 
@@ -48,8 +48,8 @@ static Mesh tangled_grid()
 int main()
 {
   // CGAL's parameters first, the package's after them
-  const auto np = CGAL::parameters::geom_traits(K()).number_of_iterations(40).time_limit(60.).sharp_angle(160.);
-  HMO_CHECK(CGAL::parameters::get_parameter(np, CGAL::internal_np::time_limit) == 60.);
+  const auto np = CGAL::parameters::geom_traits(K()).number_of_iterations(40).maximum_running_time(60.).sharp_angle(160.);
+  HMO_CHECK(CGAL::parameters::get_parameter(np, CGAL::internal_np::maximum_running_time) == 60.);
   HMO_CHECK(CGAL::parameters::get_parameter(np, CGAL::hex_mesh_internal_np::sharp_angle) == 160.);
   HMO_CHECK(CGAL::parameters::get_parameter(np, CGAL::internal_np::number_of_iterations) == 40);
 
@@ -60,7 +60,7 @@ int main()
   // and the package's first, mixed with CGAL's
   Mesh again = tangled_grid();
   const auto r2 = CGAL::untangle_hex_mesh(
-    again, CGAL::parameters::time_limit(60.).geom_traits(K()).sharp_angle(160.).number_of_iterations(40));
+    again, CGAL::parameters::sharp_angle(160.).geom_traits(K()).surface_tolerance(0.005).maximum_running_time(60.).number_of_iterations(40));
   HMO_CHECK(r2.inverted_after == 0);
   HMO_CHECK(again.points == m.points);
   return hmo_test::report("test_patched_parameters");

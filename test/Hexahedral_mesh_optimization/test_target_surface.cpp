@@ -10,6 +10,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_fitting.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Final_projection.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 #include <CGAL/Hexahedral_mesh_optimization/IO/hex_mesh_io.h>
@@ -1145,6 +1146,74 @@ void test_feature_recovery()
 // kink of the reference. The fit must take the error down by sliding the
 // vertices along the surface and the rims along their creases, never
 // taking a hex below the floor.
+/// Constrained boundary vertices (`Hex_mesh_arrays::constrained`) on the
+/// target surface: pinned where they are (a corner whose anchor is its own
+/// position, whatever the reference says), so that the surface fit and the
+/// final projection move the boundary vertices onto the reference but those. The grid's
+/// boundary is moved off the box's boundary, its reference, along the
+/// faces' normals; every other boundary vertex is constrained.
+void test_constrained_target_and_projection()
+{
+  HMO::Hex_mesh_arrays m = grid(3, 3, 3);
+  const HMO::Hex_mesh_arrays cube = grid(1, 1, 1);
+  std::vector<Vec3> ref_points;
+  std::vector<HMO::Tri> ref_triangles;
+  HMO::triangulate_boundary(HMO::extract_boundary(cube), cube.points, HMO::Quad_split::diagonal_02, ref_points, ref_triangles);
+  const HMO::Hex_mesh_boundary boundary = HMO::extract_boundary(m);
+  m.constrained.assign(m.points.size(), 0);
+  std::size_t n_constrained = 0;
+  for(std::size_t bi = 0; bi < boundary.vertices.size(); ++bi)
+  {
+    const std::size_t v = boundary.vertices[bi];
+    Vec3& p = m.points[v];
+    for(int c = 0; c < 3; ++c)
+      if(p[c] == 0.) p[c] = -0.02 * double(1 + bi % 3);
+      else if(p[c] == 1.) p[c] = 1. + 0.02 * double(1 + bi % 3);
+    if(bi % 2 == 1) { m.constrained[v] = 1; ++n_constrained; }
+  }
+  HMO_CHECK(n_constrained > 20);
+  HMO::Target_surface_parameters param;
+  param.smoothing_iterations = 0;
+  const HMO::Target_surface ts(m, ref_points, ref_triangles, param);
+  std::vector<HMO::Boundary_constraint> bc;
+  ts.update_constraints(m.points, bc);
+  for(std::size_t v : boundary.vertices)
+    if(m.is_constrained(v))
+    {
+      HMO_CHECK(ts.vertex_class(v) == Vertex_class::corner);
+      HMO_CHECK(bc[v].anchor == m.points[v]);
+      HMO_CHECK(ts.constraint_at(v, m.points[v]).anchor == m.points[v]);
+    }
+  const HMO::Hex_mesh_topology topo(m);
+  // the surface fit: the free boundary vertices toward the reference
+  {
+    HMO::Surface_fitting_settings fs;
+    fs.aim = 0.005;
+    fs.floor = 0.;
+    HMO::Surface_fitting fit(topo, ts, ref_points, ref_triangles, fs);
+    std::vector<Vec3> points = m.points;
+    HMO_CHECK(fit.run(points).moves > 0);
+    std::size_t moved_free = 0;
+    for(std::size_t v = 0; v < points.size(); ++v)
+    {
+      if(m.is_constrained(v)) HMO_CHECK(points[v] == m.points[v]);
+      else if(points[v] != m.points[v]) ++moved_free;
+    }
+    HMO_CHECK(moved_free > 0);
+  }
+  // the final projection
+  std::vector<Vec3> points = m.points;
+  const HMO::Final_projection_report r = HMO::project_boundary_onto_target(topo, ts, points, 0., 3);
+  HMO_CHECK(r.projected > 0);
+  std::size_t moved_free = 0;
+  for(std::size_t v : boundary.vertices)
+  {
+    if(m.is_constrained(v)) HMO_CHECK(points[v] == m.points[v]);
+    else if(points[v] != m.points[v]) ++moved_free;
+  }
+  HMO_CHECK(moved_free == r.projected);
+}
+
 void test_surface_fitting()
 {
   const HMO::Hex_mesh_arrays start = cylinder(4, 3, 1.);
@@ -1204,6 +1273,7 @@ void test_surface_fitting()
     off = (std::max)(off, HMO::norm(q - m.points[v]));
   }
   HMO_CHECK(off < 1e-9);
+
 }
 
 HMO_TEST_MAIN(test_target_surface)
@@ -1220,6 +1290,7 @@ HMO_TEST_MAIN(test_target_surface)
   HMO_CASE(test_surface_error_after_change(1e-6));
   HMO_CASE(test_reference_fit());
   HMO_CASE(test_surface_fitting());
+  HMO_CASE(test_constrained_target_and_projection());
   HMO_CASE(test_shared_data());
   return hmo_test::report(argv[0]);
 }

@@ -163,7 +163,7 @@ static void test_unresolved_elements()
   // through the public function, stopped at once by its time limit: every
   // element still inverted is listed
   Mesh stopped = m;
-  const HMO::Optimization_result r = CGAL::untangle_hex_mesh(stopped, CGAL::parameters::time_limit(1e-9));
+  const HMO::Optimization_result r = CGAL::untangle_hex_mesh(stopped, CGAL::parameters::maximum_running_time(1e-9));
   HMO_CHECK(r.time_limit_reached);
   HMO_CHECK(r.inverted_after > 0 && r.unresolved.size() == r.inverted_after);
   // run to the end, nothing is left and nothing is listed

@@ -51,7 +51,7 @@ struct Unresolved_element
   /// limit fired or not).
   /// `region_exhausted`: it has an interior vertex in an inverted frame,
   /// and the stages' widest regions around it did not free it.
-  /// `time_limit`: a hard stop (`time_limit`, or `stop_flag`) fired before
+  /// `time_limit`: a hard stop (`maximum_running_time`, or `stop_flag`) fired before
   /// the stages were done.
   /// `constrained`: one of its inverted frames has every vertex constrained
   /// by the user (`vertex_is_constrained_map`) or on the boundary, at least
@@ -98,7 +98,7 @@ is then true).
 
 The stages end on their own criteria (convergence, work caps counted in
 sweeps or iterations), never on the clock, so that the same input and
-options always give the same result. The `time_limit` named parameter is a
+options always give the same result. The `maximum_running_time` named parameter is a
 hard stop only: when it fires, every stage stops at its next safe point, the
 last state that passed its checks is returned (never worse than the input),
 and `time_limit_reached` is true.
@@ -115,7 +115,7 @@ struct Optimization_result
   double surface_error = 0.;
   /// wall-clock time of the optimisation, in seconds (a report: no stage reads it)
   double seconds = 0.;
-  /// whether the `time_limit` hard stop fired (the result is then the last
+  /// whether the `maximum_running_time` hard stop fired (the result is then the last
   /// checked state the run had reached when it stopped)
   bool time_limit_reached = false;
   /// whether the `stop_flag` hard stop fired (the result is then, as for the

@@ -21,6 +21,7 @@
 //       CGAL::parameters::reference_surface(surface)
 //                        .sharp_angle(160.)
 //                        .number_of_iterations(40)
+//                        .maximum_running_time(60.)
 //                        .vertex_is_constrained_map(vcm));
 //
 // With a stock CGAL 5.5 a chain takes the package's parameters first and
@@ -36,9 +37,17 @@
 // (which defines CGAL_PARAMETERS_INTERFACE_HAS_HEX_MESH_OPTIMIZATION), the
 // parameters are CGAL's own and every order works.
 //
-// CGAL 5.5's Mesh_3 declares `CGAL::parameters::time_limit` as a
-// Boost.Parameter keyword (CGAL/boost/parameter.h): a translation unit that
-// includes both that header and this one does not compile.
+// The hard stop of a run is CGAL's own `maximum_running_time` (seconds; tag
+// `CGAL::internal_np::maximum_running_time_t`, already in CGAL 5.5's list),
+// not a parameter of the package: CGAL 5.5's Mesh_3 declares
+// `CGAL::parameters::time_limit` as a Boost.Parameter keyword
+// (CGAL/boost/parameter.h, included by CGAL/make_mesh_3.h and the other
+// Mesh_3 functions), which a package function of that name would clash with
+// in any translation unit that includes both. CGAL 5.6 moved Mesh_3 to named
+// function parameters, and CGAL's list declares its `time_limit` as a second
+// name of that same tag (`CGAL_add_extra_named_parameter_with_compatibility(
+// maximum_running_time_t, maximum_running_time, time_limit)`): with those
+// versions `CGAL::parameters::time_limit` is read as the time limit too.
 //
 // The parameters that only tune the schedule are not public: their tags stay
 // in `hex_mesh_internal_np` and only the tool, the Python binding and the
@@ -100,7 +109,6 @@ CGAL_HMO_PUBLIC_PARAMETER(reference_surface)
 CGAL_HMO_PUBLIC_PARAMETER(reference_vertex_point_map)
 CGAL_HMO_PUBLIC_PARAMETER(sharp_angle)
 CGAL_HMO_PUBLIC_PARAMETER(reference_feature_angle)
-CGAL_HMO_PUBLIC_PARAMETER(time_limit)
 CGAL_HMO_PUBLIC_PARAMETER(stop_flag)
 CGAL_HMO_PUBLIC_PARAMETER(target_msj)
 CGAL_HMO_PUBLIC_PARAMETER(surface_tolerance)
@@ -168,7 +176,7 @@ namespace Hexahedral_mesh_optimization {
 namespace internal {
 
 #define CGAL_HMO_PARAMETER_LIST(X) \
-  X(reference_surface) X(reference_vertex_point_map) X(sharp_angle) X(reference_feature_angle) X(time_limit) X(stop_flag) \
+  X(reference_surface) X(reference_vertex_point_map) X(sharp_angle) X(reference_feature_angle) X(stop_flag) \
   X(target_msj) X(surface_tolerance) X(method) X(paper_recipe) X(volume_tolerance) X(outside_tolerance)
 
 /// What the package's free functions of `CGAL::parameters` return: CGAL's

@@ -47,12 +47,14 @@ inline double checked_parameter(const char* name, double value, double min, doub
   throw std::invalid_argument(message.str());
 }
 
-/// the `time_limit` named parameter: seconds, or infinity (no limit)
+/// the time limit, CGAL's `maximum_running_time` named parameter (the tag
+/// CGAL 5.6's Mesh_3 reads for its `time_limit` too; see parameters.h):
+/// seconds, or infinity (no limit)
 template <class NamedParameters>
 double time_limit_parameter(const NamedParameters& np)
 {
-  return checked_parameter("time_limit",
-                           parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::time_limit),
+  return checked_parameter("maximum_running_time",
+                           parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::maximum_running_time),
                                                         std::numeric_limits<double>::infinity()),
                            0., std::numeric_limits<double>::infinity());
 }
