@@ -16,6 +16,9 @@
 
 // Quality improvement after untangling (Sections 3.3 and 3.4 and the final
 // smoothing), on flat arrays. The driver `run` calls one method per stage:
+//   0. `limit_to_repair_region` (Repair_region.h): the vertices away from
+//      what is broken, got worse or was poor in the input are constrained
+//      for every later stage;
 //   1. `set_up`: normalise (mean edge 0.025, as the untangler), target
 //      surface Ω_t of the reference (the original input's boundary, or the
 //      user's surface); the ideal angles are made when an edge-angle pass
@@ -36,6 +39,10 @@
 //      the MSJ rises, each turn checked against the surface bound;
 //   6. `final_asj_smoothing` (Asj_smoothing.h): raises the mean without
 //      lowering any element below the MSJ reached;
+//   6b. `give_back_stage` (Give_back.h): moved vertices back at their
+//      input position where the repair did not need them moved;
+//   6c. `final_projection_stage` (Final_projection.h): the boundary exactly
+//      onto the target surface where that keeps the MSJ;
 //   7. undo the normalisation; if the MSJ (or the inverted count) is worse
 //      than the input's, the input is returned.
 // Every stage ends on its own convergence test or work cap, all in
@@ -186,9 +193,9 @@ public:
     if(!stopped()) msj_stages_with_retry(st);
     if(m_s.asj_smoothing && !stopped()) turns(st);
     if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
-    if(m_s.schedule.final_projection && !stopped()) final_projection_stage(st);
     std::vector<Vec3> normalized_original;
     if(m_s.schedule.give_back && !stopped()) normalized_original = give_back_stage(st, original);
+    if(m_s.schedule.final_projection && !stopped()) final_projection_stage(st);
 
     const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = st.nz.undo(p);

@@ -452,9 +452,20 @@ private:
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       region.free_vertices.swap(interior);
     }
+    // hexes the mesher made well keep their shape as the reference of their
+    // frames (`Barrier_untangler::set_reference_shapes`)
+    const double shape_sj = m_s.schedule.barrier_input_shape_sj;
+    const std::vector<Vec3> reference = mesh.points;
+    std::vector<unsigned char> use_reference(mesh.hexes.size(), 0);
+    if(shape_sj <= 1.)
+    {
+      const std::vector<double> sj = scaled_jacobians(mesh);
+      for(std::size_t h = 0; h < sj.size(); ++h) use_reference[h] = sj[h] >= shape_sj;
+    }
     for_each_region(regions, [&](const Local_region& region) {
       if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
+      if(shape_sj <= 1.) b.set_reference_shapes(&reference, &use_reference);
       b.set_time_limit(m_s.time_limit);
       run_on_region(b, region, mesh, true);
     });

@@ -66,6 +66,9 @@ struct Optimization_schedule
   /// rings of hexes around the inverted ones in the regions of the stage
   /// "interior" (the barrier with every boundary vertex fixed)
   int interior_rings = 3;
+  /// the stage "interior": a hex whose input SJ is at least this keeps its
+  /// input shape as the barrier's ideal, not a cube (> 1: never)
+  double barrier_input_shape_sj = 0.99;
   /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
   /// earlier by this many consecutive rounds that free nothing (the barrier
   /// takes over), and regions above this many hexes are left to the barrier
@@ -302,6 +305,7 @@ struct Optimization_schedule
     s.msj_stage_max_min = false;
     s.final_projection = false;
     s.repair_region = false;
+    s.barrier_input_shape_sj = 2.;
     s.give_back = false;
     s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
     s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();
