@@ -69,6 +69,9 @@ struct Optimization_schedule
   /// the stage "interior": a hex whose input SJ is at least this keeps its
   /// input shape as the barrier's ideal, not a cube (> 1: never)
   double barrier_input_shape_sj = 0.99;
+  /// ... and an inverted hex whose median edge lengths along its three
+  /// directions have at least this aspect gets that box as ideal
+  double barrier_box_min_aspect = 2.;
   /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
   /// earlier by this many consecutive rounds that free nothing (the barrier
   /// takes over), and regions above this many hexes are left to the barrier

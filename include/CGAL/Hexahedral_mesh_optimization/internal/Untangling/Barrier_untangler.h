@@ -206,7 +206,8 @@ private:
       if(!(*m_ref_use)[h]) continue;
       double p[8][3], W[9][3][3];
       for(int i = 0; i < 8; ++i) for(int d = 0; d < 3; ++d) p[i][d] = (*m_ref_points)[hexes[h][i]][d];
-      frames(p, W);
+      if((*m_ref_use)[h] == 2) box_frames(p, W);
+      else frames(p, W);
       std::array<std::array<std::array<double, 3>, 3>, 9> inv;
       bool ok = true;
       for(int s = 0; s < 9 && ok; ++s)
@@ -231,6 +232,41 @@ private:
       m_winv_of[r] = int(m_winv.size());
       m_winv.push_back(inv);
     }
+  }
+
+  /// the frames of the box whose edge length along each of the hex's three
+  /// directions is the median of its four edges there at `p`: the ideal of a
+  /// hex whose own frames are not valid (one pushed vertex spoils one edge of four)
+  static void box_frames(const double p[8][3], double W[9][3][3])
+  {
+    const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                   {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                   {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+    double L[3];
+    for(int a = 0; a < 3; ++a)
+    {
+      double l[4];
+      for(int e = 0; e < 4; ++e)
+      {
+        double q = 0.;
+        for(int d = 0; d < 3; ++d)
+        {
+          const double t = p[parallel[a][e][1]][d] - p[parallel[a][e][0]][d];
+          q += t * t;
+        }
+        l[e] = std::sqrt(q);
+      }
+      std::sort(l, l + 4);
+      L[a] = 0.5 * (l[1] + l[2]);
+    }
+    // the direction of edge (u, v): 2 between the two faces 0-3 and 4-7,
+    // else 0 for (0, 1) and (2, 3) in either face, 1 for (1, 2) and (3, 0)
+    auto axis = [](int u, int v) { return (u - v == 4 || v - u == 4) ? 2 : (((u % 4) ^ (v % 4)) == 1 ? 0 : 1); };
+    for(int s = 0; s < 9; ++s)
+      for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) W[s][a][b] = 0.;
+    for(int c = 0; c < 8; ++c)
+      for(int k = 0; k < 3; ++k) W[c][k][k] = L[axis(c, hex_corner_edges[c][k])];
+    for(int k = 0; k < 3; ++k) W[8][k][k] = L[k];
   }
 
   void corners(const Eigen::VectorXd& x, std::size_t r, double p[8][3]) const
