@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <utility>
@@ -343,6 +344,8 @@ private:
 /// The minimum scaled Jacobian of the hexes around vertex `v` with `v` at
 /// `x` (the other vertices at `points`): the local test of every one-vertex
 /// move that must keep an SJ floor (max-min smoothing, snaps, projections).
+/// A NaN value (a zero-length edge) is returned as it is, so that every
+/// comparison with a floor fails (std::min would drop it).
 inline double min_scaled_jacobian_around(const Hex_mesh_topology& topo, const std::vector<Vec3>& points,
                                          std::size_t v, const Vec3& x)
 {
@@ -352,7 +355,9 @@ inline double min_scaled_jacobian_around(const Hex_mesh_topology& topo, const st
     std::array<Vec3, 8> p;
     for(int i = 0; i < 8; ++i) p[i] = points[topo.hexes()[c->hex][i]];
     p[c->local] = x;
-    m = (std::min)(m, scaled_jacobian(p));
+    const double sj = scaled_jacobian(p);
+    if(std::isnan(sj)) return sj;
+    m = (std::min)(m, sj);
   }
   return m;
 }
