@@ -26,7 +26,9 @@
 //      what the interior alone can untangle is untangled without moving the
 //      surface (untangling through the relaxed edge-angle optimiser first
 //      lets boundary vertices wander mean edges from home and uncover
-//      creases the quality stages' guard then misses);
+//      creases the quality stages' guard then misses); a well-made hex
+//      keeps its input shape as its ideal, an inverted one the box of its
+//      edges' median lengths, so that a graded mesh stays graded;
 //   4. stage "edge-angle": the local optimiser of Algorithm 1
 //      (Local_optimizer.h) on what is left;
 //   5. stage "barrier": on what is left, the foldover-free energy
@@ -48,6 +50,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -452,9 +455,24 @@ private:
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       region.free_vertices.swap(interior);
     }
+    // hexes the mesher made well keep their shape as the reference of their
+    // frames (`Barrier_untangler::set_reference_shapes`)
+    const double shape_sj = m_s.schedule.barrier_input_shape_sj;
+    const std::vector<Vec3> reference = mesh.points;
+    std::vector<unsigned char> use_reference(mesh.hexes.size(), 0);
+    if(shape_sj <= 1.)
+    {
+      const std::vector<double> sj = scaled_jacobians(mesh);
+      for(std::size_t h = 0; h < sj.size(); ++h) use_reference[h] = sj[h] >= shape_sj;
+      // an inverted hex whose parallel edges say it is a box (median lengths
+      // of aspect at least `barrier_box_min_aspect`) gets that box as ideal
+      for(std::size_t h = 0; h < sj.size(); ++h)
+        if(is_inverted(sj[h]) && box_aspect(mesh, h) >= m_s.schedule.barrier_box_min_aspect) use_reference[h] = 2;
+    }
     for_each_region(regions, [&](const Local_region& region) {
       if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
+      if(shape_sj <= 1.) b.set_reference_shapes(&reference, &use_reference);
       b.set_time_limit(m_s.time_limit);
       run_on_region(b, region, mesh, true);
     });
@@ -464,6 +482,26 @@ private:
     d << "foldover-free energy, interior vertices only; " << regions.size() << " regions, the largest of "
       << largest << " hexes";
     return d.str();
+  }
+
+  /// the largest ratio of the median lengths of hex h's edges along its
+  /// three directions (`Barrier_untangler::box_frames`)
+  static double box_aspect(const Hex_mesh_arrays& mesh, std::size_t h)
+  {
+    static const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                          {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                          {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+    double L[3];
+    for(int a = 0; a < 3; ++a)
+    {
+      double l[4];
+      for(int e = 0; e < 4; ++e)
+        l[e] = norm(mesh.points[mesh.hexes[h][parallel[a][e][1]]] - mesh.points[mesh.hexes[h][parallel[a][e][0]]]);
+      std::sort(l, l + 4);
+      L[a] = 0.5 * (l[1] + l[2]);
+    }
+    const double lo = (std::min)({L[0], L[1], L[2]}), hi = (std::max)({L[0], L[1], L[2]});
+    return lo > 0. ? hi / lo : 0.;
   }
 
   /// Untangling by `b` on `region`, undone unless the region's inverted
