@@ -183,8 +183,10 @@ public:
 
     Run_state st(mesh, res);
     const std::vector<unsigned char> user_constrained = mesh.constrained;
-    if(m_s.schedule.repair_region) limit_to_repair_region(st, original);
+    std::string region; // reported once the mesh is normalised, as every later event
+    if(m_s.schedule.repair_region) region = limit_to_repair_region(st, original);
     set_up(st, original);
+    if(!region.empty()) report_event(st, "repair region", region, false);
     const std::vector<Vec3> normalized_input = mesh.points;
     if(m_s.pull_back && !stopped()) pull_back_stage(st, original); // around what is inverted, if anything (see Pull_back.h)
     if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
@@ -224,8 +226,9 @@ private:
 
   /// Stage "repair region" (Repair_region.h): the vertices outside the
   /// region around what is broken, got worse or was poor in `original` are
-  /// constrained for every later stage (the user's mask is put back at the end)
-  void limit_to_repair_region(Run_state& st, const Hex_mesh_arrays& original)
+  /// constrained for every later stage (the user's mask is put back at the
+  /// end); returns the stage's description
+  std::string limit_to_repair_region(Run_state& st, const Hex_mesh_arrays& original)
   {
     const Optimization_schedule& sc = m_s.schedule;
     const Hex_mesh_topology topo(st.mesh);
@@ -235,7 +238,7 @@ private:
     d << r.reasons << " hexes to repair, " << r.free_vertices << " of " << st.mesh.points.size()
       << " vertices free" << (r.whole_mesh ? " (the whole mesh)" : "");
     if(!r.whole_mesh) st.mesh.constrained = r.constrained;
-    report_event(st, "repair region", d.str(), false);
+    return d.str();
   }
 
   /// the reference surface, the normalisation and Ω_t
