@@ -1101,6 +1101,8 @@ static std::vector<Ablation> ablations()
   return {
     {"default", [](S&, bool&) {}},
     {"no repair region", [](S& s, bool&) { s.repair_region = false; }},
+    {"no input-shape ideal", [](S& s, bool&) { s.barrier_input_shape_sj = 2.; }},
+    {"no give-back", [](S& s, bool&) { s.give_back = false; }},
     {"no interior barrier", [](S& s, bool&) { s.interior_stage = false; }},
     {"no edge-angle untangling", [](S& s, bool&) { s.edge_angle_stage = false; }},
     {"no barrier untangling", [](S& s, bool&) { s.barrier_stage = false; }},

@@ -58,6 +58,17 @@ struct Give_back_report
   int sweeps = 0;
 };
 
+/// whether `a` is no farther from `ts`'s reference than `b` (a boundary
+/// vertex may go from `b` back to `a`)
+template <typename Target_surface>
+bool closer_to_reference(const Target_surface& ts, const Vec3& a, const Vec3& b)
+{
+  Vec3 ca, cb;
+  ts.closest_on_reference(a, ca);
+  ts.closest_on_reference(b, cb);
+  return squared_norm(a - ca) <= squared_norm(b - cb);
+}
+
 /// Puts the vertices of `points` back at `input` where that keeps every hex
 /// around them as the settings say (see above); constrained vertices never move.
 inline Give_back_report give_back_to_input(const Hex_mesh_topology& topo, const std::vector<Vec3>& input,

@@ -610,10 +610,7 @@ private:
     gs.slack = sc.give_back_slack;
     gs.max_sweeps = sc.give_back_sweeps;
     gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
-      Vec3 a, b;
-      ts.closest_on_reference(now, a);
-      ts.closest_on_reference(in, b);
-      return squared_norm(in - b) <= squared_norm(now - a);
+      return closer_to_reference(ts, in, now);
     };
     const Give_back_report r = give_back_to_input(*st.topo, input, st.mesh.points, gs);
     std::ostringstream d;

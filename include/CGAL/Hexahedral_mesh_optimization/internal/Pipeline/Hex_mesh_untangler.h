@@ -48,6 +48,7 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Give_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 
 #include <algorithm>
@@ -293,6 +294,8 @@ public:
       barrier_stage(topo, *ts, mesh, res);
     if(sc.surface_stage && !stopped())
       surface_stage(topo, *ts, mesh, res);
+    if(sc.give_back && !stopped())
+      give_back_stage(topo, *ts, normalized_input, mesh, res);
 
     const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = nz.undo(p);
@@ -341,6 +344,33 @@ private:
     Stage_report sr = begin_stage("interior");
     sr.details = untangle_interior(topo, boundary, mesh);
     sr.rounds = 1;
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "give-back" (Give_back.h): the vertices the stages moved go back
+  /// to `input` wherever no hex around them then loses more than the
+  /// schedule's slack of its scaled Jacobian (nor falls below the MSJ
+  /// reached): the regions' energies move every vertex a little, far from
+  /// what was inverted, where the repair needed none of it
+  void give_back_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const std::vector<Vec3>& input,
+                       Hex_mesh_arrays& mesh, Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    Stage_report sr = begin_stage("give-back");
+    Give_back_settings gs;
+    gs.aimed = 1.;
+    gs.floor = quality_statistics(mesh).msj;
+    gs.slack = m_s.schedule.give_back_slack;
+    gs.max_sweeps = m_s.schedule.give_back_sweeps;
+    gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
+      return closer_to_reference(ts, in, now);
+    };
+    const Give_back_report r = give_back_to_input(topo, input, mesh.points, gs);
+    std::ostringstream d;
+    d << r.given_back << " of " << r.moved_before << " moved vertices back at their input position in " << r.sweeps
+      << " sweeps";
+    sr.details = d.str();
+    sr.rounds = r.sweeps;
     end_stage(sr, mesh, t, res);
   }
 
@@ -455,20 +485,10 @@ private:
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       region.free_vertices.swap(interior);
     }
-    // hexes the mesher made well keep their shape as the reference of their
-    // frames (`Barrier_untangler::set_reference_shapes`)
     const double shape_sj = m_s.schedule.barrier_input_shape_sj;
     const std::vector<Vec3> reference = mesh.points;
-    std::vector<unsigned char> use_reference(mesh.hexes.size(), 0);
-    if(shape_sj <= 1.)
-    {
-      const std::vector<double> sj = scaled_jacobians(mesh);
-      for(std::size_t h = 0; h < sj.size(); ++h) use_reference[h] = sj[h] >= shape_sj;
-      // an inverted hex whose parallel edges say it is a box (median lengths
-      // of aspect at least `barrier_box_min_aspect`) gets that box as ideal
-      for(std::size_t h = 0; h < sj.size(); ++h)
-        if(is_inverted(sj[h]) && box_aspect(mesh, h) >= m_s.schedule.barrier_box_min_aspect) use_reference[h] = 2;
-    }
+    const std::vector<unsigned char> use_reference =
+      shape_sj <= 1. ? box_ideals(topo, mesh) : std::vector<unsigned char>(mesh.hexes.size(), 0);
     for_each_region(regions, [&](const Local_region& region) {
       if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
@@ -482,6 +502,43 @@ private:
     d << "foldover-free energy, interior vertices only; " << regions.size() << " regions, the largest of "
       << largest << " hexes";
     return d.str();
+  }
+
+  /// Which hexes keep a box as the barrier's ideal (`Barrier_untangler::set_reference_shapes`):
+  /// 1 its input shape, 2 the box of its median edge lengths (an inverted
+  /// hex), 0 a cube. A hex keeps a box where the mesher evidently meant
+  /// boxes (a boundary layer): it is elongated (`box_aspect` at least
+  /// `barrier_box_min_aspect`) and at least `barrier_box_evidence` of the
+  /// hexes sharing a vertex with it are elongated and well made (SJ at least
+  /// `barrier_input_shape_sj`). Scattered inverted or elongated hexes, as a
+  /// perturbation leaves them, aim at a cube.
+  std::vector<unsigned char> box_ideals(const Hex_mesh_topology& topo, const Hex_mesh_arrays& mesh) const
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const std::size_t nh = mesh.hexes.size();
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    std::vector<unsigned char> elongated(nh, 0), well_made_box(nh, 0), use(nh, 0);
+    for(std::size_t h = 0; h < nh; ++h)
+    {
+      elongated[h] = box_aspect(mesh, h) >= sc.barrier_box_min_aspect;
+      well_made_box[h] = elongated[h] && sj[h] >= sc.barrier_input_shape_sj;
+    }
+    std::vector<std::size_t> ring;
+    for(std::size_t h = 0; h < nh; ++h)
+    {
+      if(!elongated[h] || !(well_made_box[h] || is_inverted(sj[h]))) continue;
+      ring.clear();
+      for(std::size_t v : mesh.hexes[h])
+        for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+          if(c->hex != h) ring.push_back(c->hex);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      std::size_t boxes = 0;
+      for(std::size_t n : ring) boxes += well_made_box[n];
+      if(!ring.empty() && double(boxes) >= sc.barrier_box_evidence * double(ring.size()))
+        use[h] = is_inverted(sj[h]) ? 2 : 1;
+    }
+    return use;
   }
 
   /// the largest ratio of the median lengths of hex h's edges along its

@@ -72,6 +72,9 @@ struct Optimization_schedule
   /// ... and an inverted hex whose median edge lengths along its three
   /// directions have at least this aspect gets that box as ideal
   double barrier_box_min_aspect = 2.;
+  /// ... where at least this share of the hexes sharing a vertex with it are
+  /// well-made elongated boxes (the mesher meant boxes there)
+  double barrier_box_evidence = 0.5;
   /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
   /// earlier by this many consecutive rounds that free nothing (the barrier
   /// takes over), and regions above this many hexes are left to the barrier
