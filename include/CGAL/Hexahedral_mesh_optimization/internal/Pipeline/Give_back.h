@@ -47,6 +47,8 @@ struct Give_back_settings
   double floor = 0.;    ///< the MSJ reached: no hex goes below it
   double slack = 0.;    ///< how much SJ a hex may lose to a give-back (never below `floor`)
   int max_sweeps = 10;
+  /// per vertex: whether it may go back (empty: every vertex)
+  std::vector<unsigned char> eligible;
   /// whether boundary vertex v may go from `now` to `input` (surface check); null: never
   std::function<bool(std::size_t v, const Vec3& now, const Vec3& input)> boundary_allowed;
 };
@@ -83,7 +85,7 @@ inline Give_back_report give_back_to_input(const Hex_mesh_topology& topo, const 
   };
   std::vector<std::size_t> off;
   for(std::size_t v = 0; v < points.size(); ++v)
-    if(points[v] != input[v] && !topo.is_constrained(v)) off.push_back(v);
+    if(points[v] != input[v] && !topo.is_constrained(v) && (s.eligible.empty() || s.eligible[v])) off.push_back(v);
   rep.moved_before = off.size();
   std::vector<double> before;
   for(int sweep = 0; sweep < s.max_sweeps && !off.empty(); ++sweep)

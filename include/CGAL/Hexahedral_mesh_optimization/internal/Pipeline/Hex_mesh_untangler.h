@@ -26,7 +26,8 @@
 //      what the interior alone can untangle is untangled without moving the
 //      surface (untangling through the relaxed edge-angle optimiser first
 //      lets boundary vertices wander mean edges from home and uncover
-//      creases the quality stages' guard then misses); a well-made hex
+//      creases the quality stages' guard then misses); where the hexes
+//      around say the mesher meant boxes (`box_ideals`), a well-made hex
 //      keeps its input shape as its ideal, an inverted one the box of its
 //      edges' median lengths, so that a graded mesh stays graded;
 //   4. stage "edge-angle": the local optimiser of Algorithm 1
@@ -37,7 +38,9 @@
 //   6. stage "surface": the boundary pulled back toward the target surface
 //      by the same energy with a true barrier (nothing can invert), see
 //      pull_back_to_surface();
-//   7. scale back; if the result is worse than the input (more inverted, or
+//   7. stage "give-back" (Give_back.h): the moved vertices of well-made
+//      hexes back at their input position where the repair did not need them;
+//   8. scale back; if the result is worse than the input (more inverted, or
 //      as many with a lower MSJ), the input positions are kept.
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
@@ -347,11 +350,13 @@ private:
     end_stage(sr, mesh, t, res);
   }
 
-  /// stage "give-back" (Give_back.h): the vertices the stages moved go back
-  /// to `input` wherever no hex around them then loses more than the
-  /// schedule's slack of its scaled Jacobian (nor falls below the MSJ
-  /// reached): the regions' energies move every vertex a little, far from
-  /// what was inverted, where the repair needed none of it
+  /// stage "give-back" (Give_back.h): the vertices the stages moved and
+  /// whose hexes were all well made in `input` (SJ at least
+  /// `barrier_input_shape_sj`) go back there wherever no hex around them
+  /// then loses more than the schedule's slack of its scaled Jacobian (nor
+  /// falls below the MSJ reached): the regions' energies move every vertex a
+  /// little, far from what was inverted, where the repair needed none of it;
+  /// where the input was poor, its positions are no better than the moves
   void give_back_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const std::vector<Vec3>& input,
                        Hex_mesh_arrays& mesh, Optimization_result& res)
   {
@@ -365,6 +370,11 @@ private:
     gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
       return closer_to_reference(ts, in, now);
     };
+    const std::vector<double> sj = scaled_jacobians(Hex_mesh_arrays{input, mesh.hexes});
+    gs.eligible.assign(input.size(), 1);
+    for(std::size_t h = 0; h < sj.size(); ++h)
+      if(sj[h] < m_s.schedule.barrier_input_shape_sj)
+        for(std::size_t v : mesh.hexes[h]) gs.eligible[v] = 0;
     const Give_back_report r = give_back_to_input(topo, input, mesh.points, gs);
     std::ostringstream d;
     d << r.given_back << " of " << r.moved_before << " moved vertices back at their input position in " << r.sweeps

@@ -66,8 +66,9 @@ struct Optimization_schedule
   /// rings of hexes around the inverted ones in the regions of the stage
   /// "interior" (the barrier with every boundary vertex fixed)
   int interior_rings = 3;
-  /// the stage "interior": a hex whose input SJ is at least this keeps its
-  /// input shape as the barrier's ideal, not a cube (> 1: never)
+  /// a hex whose input SJ is at least this is well made: the stage "interior"
+  /// may keep its input shape as the barrier's ideal, and the untangler's
+  /// give-back may put its vertices back (> 1: never)
   double barrier_input_shape_sj = 0.99;
   /// ... and an inverted hex whose median edge lengths along its three
   /// directions have at least this aspect gets that box as ideal
