@@ -1004,13 +1004,35 @@ static int stress_sets(const std::string& dir, const std::string& only, int seed
 // ---------------------------------------------------------------------------
 // --boundary-layer
 
+/// `--stage-details` with `--boundary-layer`: the same case untangled only
+/// (what the untangling alone moves and breaks), then every stage of the
+/// whole run `r` with its details
+static void boundary_layer_stage_details(const boundary_layer::Case& c,
+                                         const HMO::internal::Reference_distance_index& index,
+                                         const HMO::Optimization_result& r)
+{
+  HMO::internal::Triangle_surface reference;
+  HMO::internal::boundary_surface(HMO::internal::make_hex_mesh_arrays(c.mesh, K()), reference);
+  Mesh mesh = c.input;
+  Setup_visitor visitor;
+  const HMO::Optimization_result u = run_optimiser(mesh, true, reference, 0.005, visitor);
+  const boundary_layer::Measures m = boundary_layer::measure(c, mesh, index);
+  char b[256];
+  std::snprintf(b, sizeof b, "    untangling only: inverted %zu, columns within 10 %% %.1f %%, wall error %.1e, moved %zu\n",
+                u.inverted_after, 100. * m.columns_within, m.wall_error, m.moved);
+  std::cout << b;
+  for(const auto& s : r.stages)
+    std::cout << "    " << s.name << ": MSJ " << s.msj_after << "; " << s.details << "\n";
+  std::cout << std::flush;
+}
+
 /// The boundary-layer class (`boundary_layer_set.h`): `seeds` generated wall
 /// meshes with pushed vertices, each optimised by `CGAL::optimize_hex_mesh`
 /// with defaults and the generated boundary as reference. One line per run,
 /// then the pass rates of the repair criteria: 0 inverted; at least 99 % of
 /// the wall columns with their first-layer height within 10 %; wall vertices
 /// on the wall to 1e-9 of the diagonal; at most 10 vertices moved per pushed one.
-static int boundary_layer_sets(int seeds, int threads)
+static int boundary_layer_sets(int seeds, int threads, bool stage_details)
 {
   const Thread_limit limit(threads);
   std::cout << "Boundary-layer class: graded wall meshes (planar for odd seeds, curved for even ones), vertices of "
@@ -1046,6 +1068,7 @@ static int boundary_layer_sets(int seeds, int threads)
                   c.pushed.size(), r.inverted_before, r.inverted_after, r.msj_after, 100. * m.columns_within,
                   100. * m.worst_height_change, m.wall_error, m.moved, m.moved_per_pushed, seconds);
     std::cout << b << std::endl;
+    if(stage_details) boundary_layer_stage_details(c, index, r);
   }
   auto pct = [&](int n) {
     char b[48];
@@ -1077,6 +1100,9 @@ static std::vector<Ablation> ablations()
   typedef HMO::internal::Optimization_schedule S;
   return {
     {"default", [](S&, bool&) {}},
+    {"no repair region", [](S& s, bool&) { s.repair_region = false; }},
+    {"no input-shape ideal", [](S& s, bool&) { s.barrier_input_shape_sj = 2.; }},
+    {"no give-back", [](S& s, bool&) { s.give_back = false; }},
     {"no interior barrier", [](S& s, bool&) { s.interior_stage = false; }},
     {"no edge-angle untangling", [](S& s, bool&) { s.edge_angle_stage = false; }},
     {"no barrier untangling", [](S& s, bool&) { s.barrier_stage = false; }},
@@ -1729,6 +1755,7 @@ static void usage(std::ostream& out)
          "                         with --boundary-layer, N generated meshes\n"
          "  --boundary-layer       the boundary-layer class: generated graded wall meshes with pushed\n"
          "                         vertices; first-layer heights, wall distance, vertices moved\n"
+         "  --stage-details        with --boundary-layer, each case also untangled only, and every stage's details\n"
          "  --stress-write DIR     with --stress, write each perturbed input, the reference surfaces and\n"
          "                         a line per run (stress_runs.tsv) into the existing folder DIR\n"
          "  --ablate               the default pipeline, then without each stage in turn, over the 8\n"
@@ -1759,7 +1786,7 @@ int main(int argc, char** argv)
   bool untangle_only = false, threads_compare = false, scaling_mode = false, stress_mode = false, paper_column = true;
   long long threads = 0, max_hexes = 0, stress_seeds = 10;
   std::string stress_write, ablate_variant, results, variant;
-  bool ablate_mode = false, boundary_layer_mode = false, paper_mode = false;
+  bool ablate_mode = false, boundary_layer_mode = false, paper_mode = false, stage_details = false;
   std::string cotrik;
   for(int i = 1; i < argc; ++i)
   {
@@ -1780,6 +1807,7 @@ int main(int argc, char** argv)
     else if(a == "--scaling") scaling_mode = true;
     else if(a == "--stress") stress_mode = true;
     else if(a == "--boundary-layer") boundary_layer_mode = true;
+    else if(a == "--stage-details") stage_details = true;
     else if(a == "--ablate") ablate_mode = true;
     else if(a == "--paper") paper_mode = true;
     else if(a == "--cotrik" && has_value) cotrik = argv[++i];
@@ -1887,7 +1915,7 @@ int main(int argc, char** argv)
   else if(boundary_layer_mode)
   {
     section = "boundary-layer";
-    status = boundary_layer_sets(int(stress_seeds), int(threads));
+    status = boundary_layer_sets(int(stress_seeds), int(threads), stage_details);
   }
   else if(paper_mode)
   {

@@ -16,6 +16,9 @@
 
 // Quality improvement after untangling (Sections 3.3 and 3.4 and the final
 // smoothing), on flat arrays. The driver `run` calls one method per stage:
+//   0. `limit_to_repair_region` (Repair_region.h): the vertices away from
+//      what is broken, got worse or was poor in the input are constrained
+//      for every later stage;
 //   1. `set_up`: normalise (mean edge 0.025, as the untangler), target
 //      surface Ω_t of the reference (the original input's boundary, or the
 //      user's surface); the ideal angles are made when an edge-angle pass
@@ -36,6 +39,10 @@
 //      the MSJ rises, each turn checked against the surface bound;
 //   6. `final_asj_smoothing` (Asj_smoothing.h): raises the mean without
 //      lowering any element below the MSJ reached;
+//   6b. `give_back_stage` (Give_back.h): moved vertices back at their
+//      input position where the repair did not need them moved;
+//   6c. `final_projection_stage` (Final_projection.h): the boundary exactly
+//      onto the target surface where that keeps the MSJ;
 //   7. undo the normalisation; if the MSJ (or the inverted count) is worse
 //      than the input's, the input is returned.
 // Every stage ends on its own convergence test or work cap, all in
@@ -61,6 +68,8 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Local_optimizer.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_schedule.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Optimization_setup.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Repair_region.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Give_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Pull_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_guard.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Surface_fitting.h>
@@ -173,7 +182,11 @@ public:
     res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
 
     Run_state st(mesh, res);
+    const std::vector<unsigned char> user_constrained = mesh.constrained;
+    std::string region; // reported once the mesh is normalised, as every later event
+    if(m_s.schedule.repair_region) region = limit_to_repair_region(st, original);
     set_up(st, original);
+    if(!region.empty()) report_event(st, "repair region", region, false);
     const std::vector<Vec3> normalized_input = mesh.points;
     if(m_s.pull_back && !stopped()) pull_back_stage(st, original); // around what is inverted, if anything (see Pull_back.h)
     if(m_s.schedule.surface_fitting && !stopped()) surface_fit_stage(st);
@@ -182,11 +195,17 @@ public:
     if(!stopped()) msj_stages_with_retry(st);
     if(m_s.asj_smoothing && !stopped()) turns(st);
     if(m_s.asj_smoothing && !stopped()) final_asj_smoothing(st);
+    std::vector<Vec3> normalized_original;
+    if(m_s.schedule.give_back && !stopped()) normalized_original = give_back_stage(st, original);
     if(m_s.schedule.final_projection && !stopped()) final_projection_stage(st);
 
     const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = st.nz.undo(p);
     restore_unmoved_vertices(mesh.points, normalized, normalized_input, input_points, mesh);
+    // the vertices the give-back put back get their exact input coordinates
+    for(std::size_t v = 0; v < normalized_original.size(); ++v)
+      if(normalized[v] == normalized_original[v]) mesh.points[v] = original.points[v];
+    mesh.constrained = user_constrained;
 
     // ---- never make the mesh worse
     const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);
@@ -204,6 +223,23 @@ private:
   bool stopped() const { return time_limit_reached(m_s.time_limit); }
 
   double aimed_msj() const { return m_s.aimed_msj(); }
+
+  /// Stage "repair region" (Repair_region.h): the vertices outside the
+  /// region around what is broken, got worse or was poor in `original` are
+  /// constrained for every later stage (the user's mask is put back at the
+  /// end); returns the stage's description
+  std::string limit_to_repair_region(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const Hex_mesh_topology topo(st.mesh);
+    const Repair_region r = repair_region(topo, scaled_jacobians(st.mesh), scaled_jacobians(original), st.mesh.constrained,
+                                          aimed_msj(), sc.repair_region_kept_sj, sc.repair_region_rings);
+    std::ostringstream d;
+    d << r.reasons << " hexes to repair, " << r.free_vertices << " of " << st.mesh.points.size()
+      << " vertices free" << (r.whole_mesh ? " (the whole mesh)" : "");
+    if(!r.whole_mesh) st.mesh.constrained = r.constrained;
+    return d.str();
+  }
 
   /// the reference surface, the normalisation and Ω_t
   void set_up(Run_state& st, const Hex_mesh_arrays& original)
@@ -549,6 +585,41 @@ private:
     report_stage(st, "projection", q, t, 1, d.str());
     st.error_bound = (std::max)(m_s.surface_tolerance, saved_error);
     if(r.projected > 0) within_bound(st, saved, saved_error, "the projection", false);
+  }
+
+  /// stage "give-back" (Give_back.h): the moved vertices back at their
+  /// position in `original` where the repair did not need them moved; undone
+  /// if the surface error grew past the tolerance or the error it had.
+  /// Returns `original`'s points normalised (empty if undone).
+  std::vector<Vec3> give_back_stage(Run_state& st, const Hex_mesh_arrays& original)
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const auto t = Clock::now();
+    m_visitor.stage_started("give-back", 0);
+    if(st.current_error < 0.) measure_error(st);
+    const std::vector<Vec3> saved = st.mesh.points;
+    const double saved_error = st.current_error;
+    const Quality_statistics q = quality_statistics(st.mesh);
+    std::vector<Vec3> input;
+    input.reserve(original.points.size());
+    for(const Vec3& p : original.points) input.push_back(st.nz.apply(p));
+    const Target_surface& ts = *st.ts;
+    Give_back_settings gs;
+    gs.aimed = aimed_msj();
+    gs.floor = q.msj;
+    gs.slack = sc.give_back_slack;
+    gs.max_sweeps = sc.give_back_sweeps;
+    gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
+      return closer_to_reference(ts, in, now);
+    };
+    const Give_back_report r = give_back_to_input(*st.topo, input, st.mesh.points, gs);
+    std::ostringstream d;
+    d << r.given_back << " of " << r.moved_before << " moved vertices back at their input position in " << r.sweeps
+      << " sweeps";
+    report_stage(st, "give-back", q, t, r.sweeps, d.str());
+    st.error_bound = (std::max)(m_s.surface_tolerance, saved_error);
+    if(r.given_back > 0 && !within_bound(st, saved, saved_error, "the give-back", false)) return {};
+    return input;
   }
 
   /// The interior vertices all at once (Global_asj_smoothing.h), never below

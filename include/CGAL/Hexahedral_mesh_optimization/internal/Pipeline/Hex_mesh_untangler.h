@@ -26,7 +26,10 @@
 //      what the interior alone can untangle is untangled without moving the
 //      surface (untangling through the relaxed edge-angle optimiser first
 //      lets boundary vertices wander mean edges from home and uncover
-//      creases the quality stages' guard then misses);
+//      creases the quality stages' guard then misses); where the hexes
+//      around say the mesher meant boxes (`box_ideals`), a well-made hex
+//      keeps its input shape as its ideal, an inverted one the box of its
+//      edges' median lengths, so that a graded mesh stays graded;
 //   4. stage "edge-angle": the local optimiser of Algorithm 1
 //      (Local_optimizer.h) on what is left;
 //   5. stage "barrier": on what is left, the foldover-free energy
@@ -35,7 +38,9 @@
 //   6. stage "surface": the boundary pulled back toward the target surface
 //      by the same energy with a true barrier (nothing can invert), see
 //      pull_back_to_surface();
-//   7. scale back; if the result is worse than the input (more inverted, or
+//   7. stage "give-back" (Give_back.h): the moved vertices of well-made
+//      hexes back at their input position where the repair did not need them;
+//   8. scale back; if the result is worse than the input (more inverted, or
 //      as many with a lower MSJ), the input positions are kept.
 
 #include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
@@ -46,8 +51,10 @@
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/Target_surface.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/quality_statistics.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Give_back.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Surface/surface_distance.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -290,6 +297,8 @@ public:
       barrier_stage(topo, *ts, mesh, res);
     if(sc.surface_stage && !stopped())
       surface_stage(topo, *ts, mesh, res);
+    if(sc.give_back && !stopped())
+      give_back_stage(topo, *ts, normalized_input, mesh, res);
 
     const std::vector<Vec3> normalized = mesh.points;
     for(Vec3& p : mesh.points) p = nz.undo(p);
@@ -338,6 +347,40 @@ private:
     Stage_report sr = begin_stage("interior");
     sr.details = untangle_interior(topo, boundary, mesh);
     sr.rounds = 1;
+    end_stage(sr, mesh, t, res);
+  }
+
+  /// stage "give-back" (Give_back.h): the vertices the stages moved and
+  /// whose hexes were all well made in `input` (SJ at least
+  /// `barrier_input_shape_sj`) go back there wherever no hex around them
+  /// then loses more than the schedule's slack of its scaled Jacobian (nor
+  /// falls below the MSJ reached): the regions' energies move every vertex a
+  /// little, far from what was inverted, where the repair needed none of it;
+  /// where the input was poor, its positions are no better than the moves
+  void give_back_stage(const Hex_mesh_topology& topo, const Target_surface& ts, const std::vector<Vec3>& input,
+                       Hex_mesh_arrays& mesh, Optimization_result& res)
+  {
+    const auto t = Clock::now();
+    Stage_report sr = begin_stage("give-back");
+    Give_back_settings gs;
+    gs.aimed = 1.;
+    gs.floor = quality_statistics(mesh).msj;
+    gs.slack = m_s.schedule.give_back_slack;
+    gs.max_sweeps = m_s.schedule.give_back_sweeps;
+    gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
+      return closer_to_reference(ts, in, now);
+    };
+    const std::vector<double> sj = scaled_jacobians(Hex_mesh_arrays{input, mesh.hexes});
+    gs.eligible.assign(input.size(), 1);
+    for(std::size_t h = 0; h < sj.size(); ++h)
+      if(sj[h] < m_s.schedule.barrier_input_shape_sj)
+        for(std::size_t v : mesh.hexes[h]) gs.eligible[v] = 0;
+    const Give_back_report r = give_back_to_input(topo, input, mesh.points, gs);
+    std::ostringstream d;
+    d << r.given_back << " of " << r.moved_before << " moved vertices back at their input position in " << r.sweeps
+      << " sweeps";
+    sr.details = d.str();
+    sr.rounds = r.sweeps;
     end_stage(sr, mesh, t, res);
   }
 
@@ -452,9 +495,14 @@ private:
       for(std::size_t v : region.free_vertices) if(!boundary.is_boundary_vertex(v)) interior.push_back(v);
       region.free_vertices.swap(interior);
     }
+    const double shape_sj = m_s.schedule.barrier_input_shape_sj;
+    const std::vector<Vec3> reference = mesh.points;
+    const std::vector<unsigned char> use_reference =
+      shape_sj <= 1. ? box_ideals(topo, mesh) : std::vector<unsigned char>(mesh.hexes.size(), 0);
     for_each_region(regions, [&](const Local_region& region) {
       if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
+      if(shape_sj <= 1.) b.set_reference_shapes(&reference, &use_reference);
       b.set_time_limit(m_s.time_limit);
       run_on_region(b, region, mesh, true);
     });
@@ -464,6 +512,63 @@ private:
     d << "foldover-free energy, interior vertices only; " << regions.size() << " regions, the largest of "
       << largest << " hexes";
     return d.str();
+  }
+
+  /// Which hexes keep a box as the barrier's ideal (`Barrier_untangler::set_reference_shapes`):
+  /// 1 its input shape, 2 the box of its median edge lengths (an inverted
+  /// hex), 0 a cube. A hex keeps a box where the mesher evidently meant
+  /// boxes (a boundary layer): it is elongated (`box_aspect` at least
+  /// `barrier_box_min_aspect`) and at least `barrier_box_evidence` of the
+  /// hexes sharing a vertex with it are elongated and well made (SJ at least
+  /// `barrier_input_shape_sj`). Scattered inverted or elongated hexes, as a
+  /// perturbation leaves them, aim at a cube.
+  std::vector<unsigned char> box_ideals(const Hex_mesh_topology& topo, const Hex_mesh_arrays& mesh) const
+  {
+    const Optimization_schedule& sc = m_s.schedule;
+    const std::size_t nh = mesh.hexes.size();
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    std::vector<unsigned char> elongated(nh, 0), well_made_box(nh, 0), use(nh, 0);
+    for(std::size_t h = 0; h < nh; ++h)
+    {
+      elongated[h] = box_aspect(mesh, h) >= sc.barrier_box_min_aspect;
+      well_made_box[h] = elongated[h] && sj[h] >= sc.barrier_input_shape_sj;
+    }
+    std::vector<std::size_t> ring;
+    for(std::size_t h = 0; h < nh; ++h)
+    {
+      if(!elongated[h] || !(well_made_box[h] || is_inverted(sj[h]))) continue;
+      ring.clear();
+      for(std::size_t v : mesh.hexes[h])
+        for(auto c = topo.vertex_corners_begin(v); c != topo.vertex_corners_end(v); ++c)
+          if(c->hex != h) ring.push_back(c->hex);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      std::size_t boxes = 0;
+      for(std::size_t n : ring) boxes += well_made_box[n];
+      if(!ring.empty() && double(boxes) >= sc.barrier_box_evidence * double(ring.size()))
+        use[h] = is_inverted(sj[h]) ? 2 : 1;
+    }
+    return use;
+  }
+
+  /// the largest ratio of the median lengths of hex h's edges along its
+  /// three directions (`Barrier_untangler::box_frames`)
+  static double box_aspect(const Hex_mesh_arrays& mesh, std::size_t h)
+  {
+    static const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                          {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                          {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+    double L[3];
+    for(int a = 0; a < 3; ++a)
+    {
+      double l[4];
+      for(int e = 0; e < 4; ++e)
+        l[e] = norm(mesh.points[mesh.hexes[h][parallel[a][e][1]]] - mesh.points[mesh.hexes[h][parallel[a][e][0]]]);
+      std::sort(l, l + 4);
+      L[a] = 0.5 * (l[1] + l[2]);
+    }
+    const double lo = (std::min)({L[0], L[1], L[2]}), hi = (std::max)({L[0], L[1], L[2]});
+    return lo > 0. ? hi / lo : 0.;
   }
 
   /// Untangling by `b` on `region`, undone unless the region's inverted

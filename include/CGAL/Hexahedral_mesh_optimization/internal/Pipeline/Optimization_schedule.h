@@ -66,6 +66,16 @@ struct Optimization_schedule
   /// rings of hexes around the inverted ones in the regions of the stage
   /// "interior" (the barrier with every boundary vertex fixed)
   int interior_rings = 3;
+  /// a hex whose input SJ is at least this is well made: the stage "interior"
+  /// may keep its input shape as the barrier's ideal, and the untangler's
+  /// give-back may put its vertices back (> 1: never)
+  double barrier_input_shape_sj = 0.99;
+  /// ... and an inverted hex whose median edge lengths along its three
+  /// directions have at least this aspect gets that box as ideal
+  double barrier_box_min_aspect = 2.;
+  /// ... where at least this share of the hexes sharing a vertex with it are
+  /// well-made elongated boxes (the mesher meant boxes there)
+  double barrier_box_evidence = 0.5;
   /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
   /// earlier by this many consecutive rounds that free nothing (the barrier
   /// takes over), and regions above this many hexes are left to the barrier
@@ -125,6 +135,20 @@ struct Optimization_schedule
   /// the paper and in the untangling stages. 150 gains on some inputs and
   /// loses on others (RESULTS.md, "Crease seeds"), so it is not the default.
   double crease_seed_angle = 180.;
+
+  /// the repair region (Repair_region.h): the quality stages move only the
+  /// vertices within `repair_region_rings` rings of a hex below the aimed MSJ that
+  /// was inverted, got worse, or had an input SJ below `repair_region_kept_sj`
+  bool repair_region = true;
+  int repair_region_rings = 2;
+  double repair_region_kept_sj = 0.99;
+
+  /// the give-back at the end (Give_back.h): moved vertices back at their
+  /// input position where no hex around falls below min(aimed MSJ, its SJ) less
+  /// `give_back_slack` nor below the MSJ reached; at most `give_back_sweeps` sweeps
+  bool give_back = true;
+  double give_back_slack = 0.002;
+  int give_back_sweeps = 10;
 
   /// SLIM iterations of the pull-back
   int pull_back_iterations = 40;
@@ -287,6 +311,9 @@ struct Optimization_schedule
     s.surface_fitting = false;
     s.msj_stage_max_min = false;
     s.final_projection = false;
+    s.repair_region = false;
+    s.barrier_input_shape_sj = 2.;
+    s.give_back = false;
     s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
     s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();
     s.msj_stage_edge_angle_passes = paper_msj_stage_edge_angle_passes;

@@ -57,6 +57,7 @@ inline Final_projection_report project_boundary_onto_target(const Hex_mesh_topol
     for(std::size_t v : bv)
     {
       if(done[v]) continue;
+      if(topo.is_constrained(v)) { done[v] = 1; continue; } // constrained vertices never move
       const Vec3 p = points[v];
       const Vec3 anchor = ts.constraint_at(v, p).anchor;
       if(squared_norm(anchor - p) == 0.) { done[v] = 1; continue; }

@@ -86,6 +86,16 @@ public:
   void set_sliding_weight(double w) { m_wt = w; }
   /// weight θ of the volume term (0, the default: the shape term alone)
   void set_volume_weight(double theta) { m_theta = theta; }
+  /// Reference shapes: the frames of hex h with `use[h]` are measured
+  /// against its frames at `points` (J W⁻¹, W scaled to determinant 1), so
+  /// that such a hex costs least in the shape it has there (a thin box of a
+  /// boundary layer stays a thin box) rather than as a cube; every other hex
+  /// against the identity. Both vectors must outlive the runs; null: none.
+  void set_reference_shapes(const std::vector<Vec3>* points, const std::vector<unsigned char>* use)
+  {
+    m_ref_points = points;
+    m_ref_use = use;
+  }
 
   /// Untangling: `passes` passes of L-BFGS on the free vertices of the region,
   /// ε shrinking as the worst frame becomes positive.
@@ -168,6 +178,7 @@ private:
         }
         m_idx[r][i] = id;
       }
+    set_up_reference_frames();
     x.resize(3 * nf);
     for(std::size_t i = 0; i < nf; ++i)
       for(int d = 0; d < 3; ++d) x[3 * i + d] = points[m_region.free_vertices[i]][d];
@@ -178,6 +189,84 @@ private:
         mean_edge += norm(points[hexes[h][hex_edges[k][0]]] - points[hexes[h][hex_edges[k][1]]]);
     mean_edge /= double((std::max)(std::size_t(1), ne));
     m_scale = mean_edge * mean_edge * mean_edge;
+  }
+
+  /// W⁻¹ of the 9 frames of each region hex with a reference shape, W at
+  /// the reference points scaled to determinant 1 (`m_winv_of[r]` its slot,
+  /// or -1: identity); a hex whose reference frames are not all positive gets none
+  void set_up_reference_frames()
+  {
+    m_winv.clear();
+    m_winv_of.assign(m_region.hexes.size(), -1);
+    if(!m_ref_points || !m_ref_use) return;
+    const auto& hexes = m_topo.hexes();
+    for(std::size_t r = 0; r < m_region.hexes.size(); ++r)
+    {
+      const std::size_t h = m_region.hexes[r];
+      if(!(*m_ref_use)[h]) continue;
+      double p[8][3], W[9][3][3];
+      for(int i = 0; i < 8; ++i) for(int d = 0; d < 3; ++d) p[i][d] = (*m_ref_points)[hexes[h][i]][d];
+      if((*m_ref_use)[h] == 2) box_frames(p, W);
+      else frames(p, W);
+      std::array<std::array<std::array<double, 3>, 3>, 9> inv;
+      bool ok = true;
+      for(int s = 0; s < 9 && ok; ++s)
+      {
+        const double det = det3(W[s]);
+        if(!(det > 0.)) { ok = false; break; }
+        const double k = std::cbrt(det); // W / k has determinant 1
+        const double (&w)[3][3] = W[s];
+        // inverse of W / k = k · adj(W) / det
+        const double f = k / det;
+        inv[s][0][0] = f * (w[1][1] * w[2][2] - w[1][2] * w[2][1]);
+        inv[s][0][1] = f * (w[0][2] * w[2][1] - w[0][1] * w[2][2]);
+        inv[s][0][2] = f * (w[0][1] * w[1][2] - w[0][2] * w[1][1]);
+        inv[s][1][0] = f * (w[1][2] * w[2][0] - w[1][0] * w[2][2]);
+        inv[s][1][1] = f * (w[0][0] * w[2][2] - w[0][2] * w[2][0]);
+        inv[s][1][2] = f * (w[0][2] * w[1][0] - w[0][0] * w[1][2]);
+        inv[s][2][0] = f * (w[1][0] * w[2][1] - w[1][1] * w[2][0]);
+        inv[s][2][1] = f * (w[0][1] * w[2][0] - w[0][0] * w[2][1]);
+        inv[s][2][2] = f * (w[0][0] * w[1][1] - w[0][1] * w[1][0]);
+      }
+      if(!ok) continue;
+      m_winv_of[r] = int(m_winv.size());
+      m_winv.push_back(inv);
+    }
+  }
+
+  /// the frames of the box whose edge length along each of the hex's three
+  /// directions is the median of its four edges there at `p`: the ideal of a
+  /// hex whose own frames are not valid (one pushed vertex spoils one edge of four)
+  static void box_frames(const double p[8][3], double W[9][3][3])
+  {
+    const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                   {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                   {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+    double L[3];
+    for(int a = 0; a < 3; ++a)
+    {
+      double l[4];
+      for(int e = 0; e < 4; ++e)
+      {
+        double q = 0.;
+        for(int d = 0; d < 3; ++d)
+        {
+          const double t = p[parallel[a][e][1]][d] - p[parallel[a][e][0]][d];
+          q += t * t;
+        }
+        l[e] = std::sqrt(q);
+      }
+      std::sort(l, l + 4);
+      L[a] = 0.5 * (l[1] + l[2]);
+    }
+    // the direction of edge (u, v): 2 between the two faces 0-3 and 4-7,
+    // else 0 for (0, 1) and (2, 3) in either face, 1 for (1, 2) and (3, 0)
+    auto axis = [](int u, int v) { return (u - v == 4 || v - u == 4) ? 2 : (((u % 4) ^ (v % 4)) == 1 ? 0 : 1); };
+    for(int s = 0; s < 9; ++s)
+      for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) W[s][a][b] = 0.;
+    for(int c = 0; c < 8; ++c)
+      for(int k = 0; k < 3; ++k) W[c][k][k] = L[axis(c, hex_corner_edges[c][k])];
+    for(int k = 0; k < 3; ++k) W[8][k][k] = L[k];
   }
 
   void corners(const Eigen::VectorXd& x, std::size_t r, double p[8][3]) const
@@ -252,9 +341,17 @@ private:
     if(gp) for(auto& c : *gp) c = {0., 0., 0.};
     corners(x, r, p);
     frames(p, J);
+    const int ref = m_winv_of.empty() ? -1 : m_winv_of[r];
     for(int s = 0; s < 9; ++s)
     {
-      const double (&j)[3][3] = J[s];
+      double jw[3][3]; // J W⁻¹ with a reference shape (the determinant is the same: det W⁻¹ = 1)
+      if(ref >= 0)
+      {
+        const auto& wi = m_winv[std::size_t(ref)][s];
+        for(int a = 0; a < 3; ++a)
+          for(int b = 0; b < 3; ++b) jw[a][b] = J[s][a][0] * wi[0][b] + J[s][a][1] * wi[1][b] + J[s][a][2] * wi[2][b];
+      }
+      const double (&j)[3][3] = ref >= 0 ? jw : J[s];
       const double det = det3(j);
       double chi, dchi;
       if(injective)
@@ -299,6 +396,15 @@ private:
       }
       double g[3][3];
       for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = a1 * j[a][b] - a2 * cof[a][b];
+      if(ref >= 0)
+      {
+        // ∂e/∂J = ∂e/∂(J W⁻¹) W⁻ᵀ
+        const auto& wi = m_winv[std::size_t(ref)][s];
+        double gj[3][3];
+        for(int a = 0; a < 3; ++a)
+          for(int b = 0; b < 3; ++b) gj[a][b] = g[a][0] * wi[b][0] + g[a][1] * wi[b][1] + g[a][2] * wi[b][2];
+        for(int a = 0; a < 3; ++a) for(int b = 0; b < 3; ++b) g[a][b] = gj[a][b];
+      }
       if(s < 8)
       {
         for(int k = 0; k < 3; ++k)
@@ -433,6 +539,10 @@ private:
   static constexpr int absent = std::numeric_limits<int>::min();
   std::vector<std::array<int, 8> > m_idx; // per region hex: free index, or -1-slot in m_fixed
   std::vector<Vec3> m_fixed;
+  const std::vector<Vec3>* m_ref_points = nullptr;
+  const std::vector<unsigned char>* m_ref_use = nullptr;
+  std::vector<int> m_winv_of; // per region hex: slot in m_winv, or -1
+  std::vector<std::array<std::array<std::array<double, 3>, 3>, 9> > m_winv;
 };
 
 } // namespace internal
