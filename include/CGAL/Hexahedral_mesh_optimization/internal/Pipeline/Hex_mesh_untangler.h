@@ -552,21 +552,12 @@ private:
   }
 
   /// the largest ratio of the median lengths of hex h's edges along its
-  /// three directions (`Barrier_untangler::box_frames`)
+  /// three directions (`median_edge_lengths`)
   static double box_aspect(const Hex_mesh_arrays& mesh, std::size_t h)
   {
-    static const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
-                                          {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
-                                          {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
-    double L[3];
-    for(int a = 0; a < 3; ++a)
-    {
-      double l[4];
-      for(int e = 0; e < 4; ++e)
-        l[e] = norm(mesh.points[mesh.hexes[h][parallel[a][e][1]]] - mesh.points[mesh.hexes[h][parallel[a][e][0]]]);
-      std::sort(l, l + 4);
-      L[a] = 0.5 * (l[1] + l[2]);
-    }
+    double p[8][3], L[3];
+    for(int i = 0; i < 8; ++i) for(int d = 0; d < 3; ++d) p[i][d] = mesh.points[mesh.hexes[h][i]][d];
+    median_edge_lengths(p, L);
     const double lo = (std::min)({L[0], L[1], L[2]}), hi = (std::max)({L[0], L[1], L[2]});
     return lo > 0. ? hi / lo : 0.;
   }

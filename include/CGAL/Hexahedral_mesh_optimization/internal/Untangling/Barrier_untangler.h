@@ -69,6 +69,32 @@ namespace CGAL {
 namespace Hexahedral_mesh_optimization {
 namespace internal {
 
+/// The median of the lengths of hex `p`'s four parallel edges along each of
+/// its three directions (MEDIT order: 0-1, 0-3, 0-4): the box a hex with one
+/// spoilt edge of four was meant to be.
+inline void median_edge_lengths(const double p[8][3], double L[3])
+{
+  static const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                        {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                        {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+  for(int a = 0; a < 3; ++a)
+  {
+    double l[4];
+    for(int e = 0; e < 4; ++e)
+    {
+      double q = 0.;
+      for(int d = 0; d < 3; ++d)
+      {
+        const double t = p[parallel[a][e][1]][d] - p[parallel[a][e][0]][d];
+        q += t * t;
+      }
+      l[e] = std::sqrt(q);
+    }
+    std::sort(l, l + 4);
+    L[a] = 0.5 * (l[1] + l[2]);
+  }
+}
+
 class Barrier_untangler
 {
 public:
@@ -239,26 +265,8 @@ private:
   /// hex whose own frames are not valid (one pushed vertex spoils one edge of four)
   static void box_frames(const double p[8][3], double W[9][3][3])
   {
-    const int parallel[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
-                                   {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
-                                   {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
     double L[3];
-    for(int a = 0; a < 3; ++a)
-    {
-      double l[4];
-      for(int e = 0; e < 4; ++e)
-      {
-        double q = 0.;
-        for(int d = 0; d < 3; ++d)
-        {
-          const double t = p[parallel[a][e][1]][d] - p[parallel[a][e][0]][d];
-          q += t * t;
-        }
-        l[e] = std::sqrt(q);
-      }
-      std::sort(l, l + 4);
-      L[a] = 0.5 * (l[1] + l[2]);
-    }
+    median_edge_lengths(p, L);
     // the direction of edge (u, v): 2 between the two faces 0-3 and 4-7,
     // else 0 for (0, 1) and (2, 3) in either face, 1 for (1, 2) and (3, 0)
     auto axis = [](int u, int v) { return (u - v == 4 || v - u == 4) ? 2 : (((u % 4) ^ (v % 4)) == 1 ? 0 : 1); };
