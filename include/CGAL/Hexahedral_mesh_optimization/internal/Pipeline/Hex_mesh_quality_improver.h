@@ -916,6 +916,7 @@ private:
     ls.max_rounds = m_s.schedule.msj_stage_rounds;
     ls.time_limit = m_s.time_limit;
     ls.min_sj_floor = keep_best ? 0. : floor;
+    ls.authors_weight_edge = m_s.schedule.authors_weight_edge;
     const Local_optimizer_report r = opt.run(st.mesh.points, ls);
     if(keep_best) st.mesh.points = best;
     return r;

@@ -73,6 +73,8 @@ struct Untangle_settings
   /// the edge-angle stage on the whole mesh at once (the paper's global
   /// variant) instead of on the 2-ring regions of the inverted elements
   bool global_region = false;
+  /// rings of hexes around the inverted ones in the edge-angle stage's regions
+  int rings = 2;
   /// the run's hard stop (null: none); it is not the schedule's business
   const Time_limit* time_limit = nullptr;
   /// work caps and convergence thresholds of every stage
@@ -368,7 +370,9 @@ private:
     ls.max_region_hexes = sc.edge_angle_max_region_hexes;
     ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
     // (rings past the mesh's diameter: one region, all its connected hexes)
+    if(m_s.rings > ls.rings) ls.rings = ls.max_rings = m_s.rings;
     if(m_s.global_region) ls.rings = ls.max_rings = static_cast<int>(mesh.hexes.size());
+    ls.authors_weight_edge = sc.authors_weight_edge;
     Stage_report sr = begin_stage("edge-angle");
     const Local_optimizer_report r = opt.run(mesh.points, ls);
     m_final_alpha = r.final_alpha;

@@ -168,6 +168,9 @@ struct Optimization_schedule
   bool msj_stage_keep_best = false;
   /// the rounds of the paper's schedule: the outer iterations of its scripts
   static constexpr int paper_msj_stage_rounds = 20;
+  /// the edge-angle optimiser's boundary weights: 0, α and β as they are;
+  /// ℓ > 0, (α ℓ)² and (β ℓ)² as in the authors' code (Local_optimizer.h)
+  double authors_weight_edge = 0.;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
   /// while a run ends above the tolerance, at most `msj_guard_retries` runs
   /// again, each with the bound times `msj_guard_retry_factor` (0.9, 0.75,
@@ -298,6 +301,7 @@ struct Optimization_schedule
     s.msj_stage_rounds = paper_msj_stage_rounds;
     s.msj_stage_projection_at_target = true;
     s.msj_stage_keep_best = true;
+    s.authors_weight_edge = 0.025; // the authors' weighting, at the normalised mean edge 0.025
     return s;
   }
 };

@@ -86,6 +86,11 @@ struct Local_optimizer_settings
   /// the run ends after this many consecutive rounds that remove no bad
   /// element (a later stage takes over)
   int max_stalled_rounds = std::numeric_limits<int>::max();
+  /// 0: α and β weigh the boundary rows as they are; ℓ > 0: as the authors'
+  /// code weighs them, (α ℓ)² and (β ℓ)², ℓ the mean edge (their rows of
+  /// Eq. 6 carry α, β unsquared beside angle rows of edge vectors divided by
+  /// their length, i.e. 1/ℓ² times the length-unit rows here)
+  double authors_weight_edge = 0.;
 };
 
 struct Local_optimizer_report
@@ -139,6 +144,11 @@ public:
       const std::vector<Local_region> regions = extract_local_regions(m_topo, seeds, rings);
       Energy_weights w;
       w.alpha = alpha; w.beta = beta;
+      if(s.authors_weight_edge > 0.)
+      {
+        w.alpha = (alpha * s.authors_weight_edge) * (alpha * s.authors_weight_edge);
+        w.beta = (beta * s.authors_weight_edge) * (beta * s.authors_weight_edge);
+      }
       std::size_t optimized = 0;
       for(const Local_region& region : regions)
         if(region.hexes.size() <= s.max_region_hexes && !time_limit_reached(s.time_limit))
