@@ -1488,6 +1488,7 @@ static std::vector<Paper_row> paper_rows()
       "LocalMeshOpt input=scaled.vtk alpha=100 beta=100 gamma=1.0 anisotropy=0.6 allowBigStep=true minScaledJacobian=0", "0.996", 20);
     r.alpha = r.beta = 100.; r.xi = 0.6;
     r.untangle_rings = 50; // LocalMeshOpt without useSmallBlock: the bad cells grown by blockSize (50) layers
+    r.untangle_big_step = true;
     r.msj_alpha = r.msj_beta = 1000.; r.msj_xi = 0.1; r.target_msj = 0.25; r.msj_sharp_angle = theta_of_cosangle(0.996);
   }
   generic("edge-cone/bunny_in.mesh", 0.651, 0.953, 0.0065, 0.65, 170.);

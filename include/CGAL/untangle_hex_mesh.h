@@ -132,6 +132,7 @@ void read_untangle_parameters(const NamedParameters& np, Untangle_settings& s, s
                            0., 10.);
   s.global_region = paper && recipe.global;
   if(paper) s.rings = recipe.untangle_rings;
+  if(paper) s.allow_big_step = recipe.untangle_big_step;
   s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
   s.local_iterations = static_cast<int>(checked_parameter(
     "local_iterations", choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20), 1., 1e9));

@@ -87,6 +87,8 @@ struct Paper_recipe
   /// authors' `LocalMeshOpt` grows them by 2 layers with `useSmallBlock`, by
   /// `blockSize`, 50 unless given, without)
   int untangle_rings = 2;
+  /// untangling: a step may move a vertex more than 2 mean edges (their `allowBigStep`)
+  bool untangle_big_step = false;
   /// the SLIM pull-back toward the input's vertices runs when α ended below this (0: never)
   double pull_back_below_alpha = 500.;
   int pull_back_iterations = 20;

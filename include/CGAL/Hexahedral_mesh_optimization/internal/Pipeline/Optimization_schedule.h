@@ -171,6 +171,11 @@ struct Optimization_schedule
   /// the edge-angle optimiser's boundary weights: 0, α and β as they are;
   /// ℓ > 0, (α ℓ)² and (β ℓ)² as in the authors' code (Local_optimizer.h)
   double authors_weight_edge = 0.;
+  /// the edge-angle optimiser runs the authors' loop (`Local_optimizer_settings::
+  /// authors_loop`), and its callers back off between runs from the same
+  /// start as the authors' scripts do (ξ − 0.1 down to 0.2, then α, β halved
+  /// and ξ back to its start), the MSJ stages while α ≥ their α floor
+  bool authors_loop = false;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
   /// while a run ends above the tolerance, at most `msj_guard_retries` runs
   /// again, each with the bound times `msj_guard_retry_factor` (0.9, 0.75,
@@ -302,6 +307,7 @@ struct Optimization_schedule
     s.msj_stage_projection_at_target = true;
     s.msj_stage_keep_best = true;
     s.authors_weight_edge = 0.025; // the authors' weighting, at the normalised mean edge 0.025
+    s.authors_loop = true;         // the authors' region loop and their scripts' back-off
     return s;
   }
 };

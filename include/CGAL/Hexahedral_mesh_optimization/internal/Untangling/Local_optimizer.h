@@ -91,6 +91,17 @@ struct Local_optimizer_settings
   /// Eq. 6 carry α, β unsquared beside angle rows of edge vectors divided by
   /// their length, i.e. 1/ℓ² times the length-unit rows here)
   double authors_weight_edge = 0.;
+  /// the authors' loop (their `LocalMeshOpt`, read for `Method::paper`):
+  /// α, β, ξ stay as given over the rounds (their scripts back off between
+  /// runs), no ring growth; in a region the step τ falls by 10 % at every
+  /// iteration, a step is rolled back only if the bad count rises, the
+  /// target lengths after the first iteration are the current ones clamped
+  /// at ξ·ē, the iterations go on past the last bad element while the
+  /// region's minimum rises and end in the state before the first that does
+  /// not raise it once above the target; and a vertex whose solution is more
+  /// than 2ē away on an axis stays put unless `allow_big_step`
+  bool authors_loop = false;
+  bool allow_big_step = false;
 };
 
 struct Local_optimizer_report
@@ -142,6 +153,7 @@ public:
       for(std::size_t h = 0; h < nh; ++h) if(is_bad(sj[h], s.target_sj)) seeds.push_back(h);
       m_constraints(points, bc);
       const std::vector<Local_region> regions = extract_local_regions(m_topo, seeds, rings);
+      const std::size_t accepted_before = rep.accepted_steps;
       Energy_weights w;
       w.alpha = alpha; w.beta = beta;
       if(s.authors_weight_edge > 0.)
@@ -159,6 +171,14 @@ public:
       if(optimized == 0) break;
       const std::size_t new_bad = count_bad(sj, s.target_sj);
       if(on_round) on_round(round, new_bad);
+      if(s.authors_loop)
+      {
+        // (a round that moved nothing would be repeated as it was)
+        const bool moved = rep.accepted_steps != accepted_before;
+        bad = new_bad;
+        if(!moved) break;
+        continue;
+      }
       const bool stalled = new_bad >= bad;
       stalled_rounds = stalled ? stalled_rounds + 1 : 0;
       if(stalled) rings = (std::min)(rings + 1, s.max_rings);
@@ -221,6 +241,12 @@ private:
     std::size_t bad, inv; double minsj;
     counts(cur, bad, inv, minsj);
     std::vector<Vec3> saved(region.free_vertices.size());
+    if(s.authors_loop)
+    {
+      authors_region_loop(region, points, energy, length, xi, s, cur, trial, bad, minsj, rep);
+      for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
+      return;
+    }
     double tau = 0.9;
     for(int it = 0; it < s.local_iterations && bad > 0; ++it)
     {
@@ -250,6 +276,71 @@ private:
       bad = nbad; inv = ninv; minsj = nmin;
     }
     for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
+  }
+
+  /// the region's iterations of `authors_loop`; `cur` holds the SJ of the
+  /// region's hexes at the start and is left with those at the end
+  void authors_region_loop(const Local_region& region, std::vector<Vec3>& points, Edge_angle_energy& energy,
+                           std::vector<double>& length, double xi, const Local_optimizer_settings& s,
+                           std::vector<double>& cur, std::vector<double>& trial, std::size_t bad, double minsj,
+                           Local_optimizer_report& rep) const
+  {
+    const std::size_t nf = region.free_vertices.size();
+    std::vector<std::size_t> edges; // the region's edges, each once
+    {
+      std::unordered_map<std::size_t, char> seen;
+      for(std::size_t h : region.hexes)
+        for(int k = 0; k < 12; ++k)
+          if(seen.emplace(m_topo.hex_edge(h, k), 1).second) edges.push_back(m_topo.hex_edge(h, k));
+    }
+    std::vector<Vec3> saved(nf), best(nf);
+    for(std::size_t i = 0; i < nf; ++i) best[i] = points[region.free_vertices[i]];
+    std::vector<double> best_sj = cur;
+    const double far = 2. * m_mean_boundary_edge;
+    double tau = 0.9, previous_min = -1.;
+    for(int it = 0; it < s.local_iterations; ++it)
+    {
+      const std::vector<Vec3> sol = energy.solve(points, length);
+      for(std::size_t i = 0; i < nf; ++i)
+      {
+        const std::size_t v = region.free_vertices[i];
+        saved[i] = points[v];
+        const Vec3 d = sol[i] - points[v];
+        if(!s.allow_big_step && (std::abs(d[0]) > far || std::abs(d[1]) > far || std::abs(d[2]) > far)) continue;
+        points[v] = (1. - tau) * points[v] + tau * sol[i];
+      }
+      tau *= 0.9;
+      std::size_t nbad = 0;
+      double nmin = 2.;
+      for(std::size_t i = 0; i < region.hexes.size(); ++i)
+      {
+        trial[i] = hex_sj(points, region.hexes[i]);
+        if(is_bad(trial[i], s.target_sj)) ++nbad;
+        nmin = (std::min)(nmin, trial[i]);
+      }
+      if(nbad > bad || (accept_step && !accept_step(region, saved, points)))
+      {
+        for(std::size_t i = 0; i < nf; ++i) points[region.free_vertices[i]] = saved[i];
+        ++rep.rolled_back_steps;
+      }
+      else
+      {
+        ++rep.accepted_steps;
+        cur.swap(trial);
+        bad = nbad; minsj = nmin;
+      }
+      if(previous_min > s.target_sj && !(minsj > previous_min)) break;
+      previous_min = minsj;
+      for(std::size_t i = 0; i < nf; ++i) best[i] = points[region.free_vertices[i]];
+      best_sj = cur;
+      for(std::size_t e : edges)
+      {
+        const auto& ed = m_topo.edge(e);
+        length[e] = (std::max)(norm(points[ed[0]] - points[ed[1]]), xi * m_mean_boundary_edge);
+      }
+    }
+    for(std::size_t i = 0; i < nf; ++i) points[region.free_vertices[i]] = best[i];
+    cur = best_sj;
   }
 
   const Hex_mesh_topology& m_topo;
