@@ -934,6 +934,8 @@ private:
     // 0.2, then α, β halved and ξ back) while α stays at or above its floor;
     // the first run that leaves nothing below t ends it
     ls.authors_loop = true;
+    ls.slide_cut = m_s.schedule.authors_slide_cut;
+    ls.authors_energy = m_s.schedule.authors_energy;
     ls.min_sj_floor = -std::numeric_limits<double>::infinity();
     const std::vector<Vec3> start = st.mesh.points;
     Local_optimizer_report r;

@@ -384,6 +384,8 @@ private:
       // to 0.2, then α, β halved and ξ back; the run with the fewest
       // inverted elements is kept
       ls.authors_loop = true;
+      ls.slide_cut = sc.authors_slide_cut;
+      ls.authors_energy = sc.authors_energy;
       ls.allow_big_step = m_s.allow_big_step;
       ls.max_rounds = (std::min)(ls.max_rounds, sc.paper_msj_stage_rounds);
       const std::vector<Vec3> start = mesh.points;
