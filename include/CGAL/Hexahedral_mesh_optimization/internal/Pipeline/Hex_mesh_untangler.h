@@ -375,10 +375,14 @@ private:
     // (rings past the mesh's diameter: one region, all its connected hexes)
     if(m_s.rings > ls.rings) ls.rings = ls.max_rings = m_s.rings;
     if(m_s.global_region) ls.rings = ls.max_rings = static_cast<int>(mesh.hexes.size());
-    ls.authors_weight_edge = sc.authors_weight_edge;
+    // (the global variant, the authors' MeshOpt, is still read as before:
+    // its own weighting with the loop below is not followed yet)
+    ls.authors_weight_edge = m_s.global_region ? 0. : sc.authors_weight_edge;
     Stage_report sr = begin_stage("edge-angle");
     Local_optimizer_report r;
-    if(sc.authors_loop)
+    // (the global variant keeps the rounds' own schedule: one whole-mesh
+    // region run again from the start at each back-off is far too slow)
+    if(sc.authors_loop && !m_s.global_region)
     {
       // the scripts' back-off: each run from the same start, ξ − 0.1 down
       // to 0.2, then α, β halved and ξ back; the run with the fewest
