@@ -141,13 +141,16 @@ inline bool read_paper_recipe(const std::string& path, CGAL::Hexahedral_mesh_opt
     double* value;
     double min, max;
   };
-  double global = r.global ? 1. : 0., steps = r.msj_in_steps ? 1. : 0., iterations = r.pull_back_iterations;
+  double global = r.global ? 1. : 0., steps = r.msj_in_steps ? 1. : 0., iterations = r.pull_back_iterations,
+         rings = r.untangle_rings, big_step = r.untangle_big_step ? 1. : 0.;
   const Field fields[] = {{"sharp_angle", &r.sharp_angle, 0., 180.},
                           {"msj_sharp_angle", &r.msj_sharp_angle, 0., 180.},
                           {"alpha", &r.alpha, 0., 1e12},
                           {"beta", &r.beta, 0., 1e12},
                           {"xi", &r.xi, 0., 10.},
                           {"global", &global, 0., 1.},
+                          {"untangle_rings", &rings, 1., 1e9},
+                          {"untangle_big_step", &big_step, 0., 1.},
                           {"pull_back_below_alpha", &r.pull_back_below_alpha, 0., 1e12},
                           {"pull_back_iterations", &iterations, 0., 1e6},
                           {"target_msj", &r.target_msj, -1., 1.},
@@ -181,6 +184,8 @@ inline bool read_paper_recipe(const std::string& path, CGAL::Hexahedral_mesh_opt
   r.global = global != 0.;
   r.msj_in_steps = steps != 0.;
   r.pull_back_iterations = static_cast<int>(iterations);
+  r.untangle_rings = static_cast<int>(rings);
+  r.untangle_big_step = big_step != 0.;
   return true;
 }
 
@@ -208,7 +213,7 @@ inline const std::vector<Option_spec>& option_table()
      }},
     {"--paper-recipe", "FILE",
      "with --method paper: the parameters of a published run, one 'name value' a line (names: the fields of "
-     "Paper_recipe: sharp_angle, msj_sharp_angle, alpha, beta, xi, global, pull_back_below_alpha, "
+     "Paper_recipe: sharp_angle, msj_sharp_angle, alpha, beta, xi, global, untangle_rings, untangle_big_step, pull_back_below_alpha, "
      "pull_back_iterations, target_msj, msj_in_steps, msj_alpha, msj_beta, msj_xi; 0/1 for flags); --sharp-angle and --target-msj override it "
      "(default: the generic recipe of the authors' scripts)",
      [](O& o, const std::string& v, std::string& e) {

@@ -1513,6 +1513,8 @@ static std::vector<Paper_row> paper_rows()
     HMO::Paper_recipe& r = table1("edge-cone/block_in.mesh", 0.252, 0.857, 0.0027,
       "LocalMeshOpt input=scaled.vtk alpha=100 beta=100 gamma=1.0 anisotropy=0.6 allowBigStep=true minScaledJacobian=0", "0.996", 20);
     r.alpha = r.beta = 100.; r.xi = 0.6;
+    r.untangle_rings = 50; // LocalMeshOpt without useSmallBlock: the bad cells grown by blockSize (50) layers
+    r.untangle_big_step = true;
     r.msj_alpha = r.msj_beta = 1000.; r.msj_xi = 0.1; r.target_msj = 0.25; r.msj_sharp_angle = theta_of_cosangle(0.996);
   }
   generic("edge-cone/bunny_in.mesh", 0.651, 0.953, 0.0065, 0.65, 170.);
@@ -1520,6 +1522,7 @@ static std::vector<Paper_row> paper_rows()
     HMO::Paper_recipe& r = table1("edge-cone/bust_in.mesh", 0.201, 0.869, 0.0088,
       "LocalMeshOpt input=scaled.vtk alpha=100 beta=100 gamma=1.0 anisotropy=0.6 minScaledJacobian=0", "0.9848", 10);
     r.alpha = r.beta = 100.; r.xi = 0.6;
+    r.untangle_rings = 50; // as block's
     r.msj_alpha = r.msj_beta = 1000.; r.msj_xi = 0.6; r.target_msj = 0.18;
     r.msj_sharp_angle = theta_of_cosangle(0.9359);
   }

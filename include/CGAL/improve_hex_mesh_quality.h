@@ -65,6 +65,7 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
     s.beta = (std::max)(choose_parameter(get_parameter(np, hex_mesh_internal_np::beta), r.msj_beta), 500.);
     s.xi = choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), r.msj_xi);
     s.pull_back_to_input = true;
+    s.keep_original_if_worse = true;
     s.schedule.pull_back_iterations = r.pull_back_iterations;
     if(!r.msj_in_steps && s.target_msj > 0.) // one stage, straight to the target
     {

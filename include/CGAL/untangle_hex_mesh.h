@@ -101,6 +101,7 @@ Paper_recipe paper_recipe_parameter(const NamedParameters& np)
   checked_parameter("paper_recipe msj_xi", r.msj_xi, 0., 10.);
   checked_parameter("paper_recipe target_msj", r.target_msj, -1., 1.);
   checked_parameter("paper_recipe pull_back_iterations", r.pull_back_iterations, 0., 1e9);
+  checked_parameter("paper_recipe untangle_rings", r.untangle_rings, 1., 1e9);
   return r;
 }
 
@@ -130,6 +131,8 @@ void read_untangle_parameters(const NamedParameters& np, Untangle_settings& s, s
   s.xi = checked_parameter("xi", choose_parameter(get_parameter(np, hex_mesh_internal_np::xi), paper ? recipe.xi : 0.6),
                            0., 10.);
   s.global_region = paper && recipe.global;
+  if(paper) s.rings = recipe.untangle_rings;
+  if(paper) s.allow_big_step = recipe.untangle_big_step;
   s.relax_surface = choose_parameter(get_parameter(np, hex_mesh_internal_np::relax_surface), true);
   s.local_iterations = static_cast<int>(checked_parameter(
     "local_iterations", choose_parameter(get_parameter(np, hex_mesh_internal_np::local_iterations), 20), 1., 1e9));

@@ -83,6 +83,12 @@ struct Paper_recipe
   double alpha = 1000., beta = 1000., xi = 0.6;
   /// untangling on the whole mesh at once (the global variant) instead of local regions
   bool global = false;
+  /// untangling: rings of hexes around the inverted ones in each region (the
+  /// authors' `LocalMeshOpt` grows them by 2 layers with `useSmallBlock`, by
+  /// `blockSize`, 50 unless given, without)
+  int untangle_rings = 2;
+  /// untangling: a step may move a vertex more than 2 mean edges (their `allowBigStep`)
+  bool untangle_big_step = false;
   /// the SLIM pull-back toward the input's vertices runs when α ended below this (0: never)
   double pull_back_below_alpha = 500.;
   int pull_back_iterations = 20;

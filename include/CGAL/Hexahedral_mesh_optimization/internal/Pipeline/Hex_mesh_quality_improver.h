@@ -105,6 +105,10 @@ struct Quality_settings
   /// pulls the boundary toward the input's own vertices, as the authors'
   /// SLIM step does (without a reference surface only); its result is kept
   bool pull_back_to_input = false;
+  /// the paper's recipe: the result is given up for `original` (not for the
+  /// untangled mesh this run starts from) when its MSJ is not above it, as
+  /// the scripts return their input
+  bool keep_original_if_worse = false;
   bool asj_smoothing = true;
   /// largest surface error allowed to the boundary moves of the quality
   /// stages, relative to the reference's bounding-box diagonal
@@ -208,7 +212,10 @@ public:
     mesh.constrained = user_constrained;
 
     // ---- never make the mesh worse
-    const Quality_statistics q1 = keep_input_if_worse(mesh, input_points, q0, res);
+    const Quality_statistics q1 =
+      m_s.keep_original_if_worse && original.points.size() == input_points.size()
+        ? keep_input_if_worse(mesh, original.points, quality_statistics(original), res)
+        : keep_input_if_worse(mesh, input_points, q0, res);
     res.success = q1.inverted == 0 && q1.msj >= aimed_msj() - 1e-12;
     res.surface_error = (st.current_error >= 0. && !st.error_may_be_bound && !res.kept_input)
                           ? st.current_error
@@ -987,7 +994,43 @@ private:
     ls.max_rounds = m_s.schedule.msj_stage_rounds;
     ls.time_limit = m_s.time_limit;
     ls.min_sj_floor = keep_best ? 0. : floor;
-    const Local_optimizer_report r = opt.run(st.mesh.points, ls);
+    ls.authors_weight_edge = m_s.schedule.authors_weight_edge;
+    if(!m_s.schedule.authors_loop)
+    {
+      const Local_optimizer_report r = opt.run(st.mesh.points, ls);
+      if(keep_best) st.mesh.points = best;
+      return r;
+    }
+    // the scripts' back-off: each run from the same start (ξ − 0.1 down to
+    // 0.2, then α, β halved and ξ back) while α stays at or above its floor;
+    // the first run that leaves nothing below t ends it
+    ls.authors_loop = true;
+    ls.slide_cut = m_s.schedule.authors_slide_cut;
+    ls.authors_energy = m_s.schedule.authors_energy;
+    ls.min_sj_floor = -std::numeric_limits<double>::infinity();
+    const std::vector<Vec3> start = st.mesh.points;
+    Local_optimizer_report r;
+    for(bool first = true;; first = false)
+    {
+      const Local_optimizer_report run = opt.run(st.mesh.points, ls);
+      if(first) r = run;
+      else
+      {
+        r.rounds += run.rounds;
+        r.accepted_steps += run.accepted_steps;
+        r.rolled_back_steps += run.rolled_back_steps;
+        r.bad_after = run.bad_after;
+      }
+      if(run.bad_after == 0 || stopped()) break;
+      ls.xi_start -= 0.1;
+      if(ls.xi_start < 0.2 - 1e-9)
+      {
+        ls.alpha *= 0.5; ls.beta *= 0.5;
+        ls.xi_start = m_s.xi;
+      }
+      if(ls.alpha < m_s.min_alpha_beta || ls.beta < m_s.min_alpha_beta) break;
+      st.mesh.points = start;
+    }
     if(keep_best) st.mesh.points = best;
     return r;
   }

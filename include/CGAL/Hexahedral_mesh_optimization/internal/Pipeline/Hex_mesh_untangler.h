@@ -80,6 +80,11 @@ struct Untangle_settings
   /// the edge-angle stage on the whole mesh at once (the paper's global
   /// variant) instead of on the 2-ring regions of the inverted elements
   bool global_region = false;
+  /// rings of hexes around the inverted ones in the edge-angle stage's regions
+  int rings = 2;
+  /// the edge-angle stage's steps may move a vertex by more than 2 mean edges
+  /// on an axis (the authors' `allowBigStep`, with `Optimization_schedule::authors_loop`)
+  bool allow_big_step = false;
   /// the run's hard stop (null: none); it is not the schedule's business
   const Time_limit* time_limit = nullptr;
   /// work caps and convergence thresholds of every stage
@@ -411,9 +416,49 @@ private:
     ls.max_region_hexes = sc.edge_angle_max_region_hexes;
     ls.max_stalled_rounds = sc.edge_angle_stalled_rounds;
     // (rings past the mesh's diameter: one region, all its connected hexes)
+    if(m_s.rings > ls.rings) ls.rings = ls.max_rings = m_s.rings;
     if(m_s.global_region) ls.rings = ls.max_rings = static_cast<int>(mesh.hexes.size());
+    // (the global variant, the authors' MeshOpt, is still read as before:
+    // its own weighting with the loop below is not followed yet)
+    ls.authors_weight_edge = m_s.global_region ? 0. : sc.authors_weight_edge;
     Stage_report sr = begin_stage("edge-angle");
-    const Local_optimizer_report r = opt.run(mesh.points, ls);
+    Local_optimizer_report r;
+    // (the global variant keeps the rounds' own schedule: one whole-mesh
+    // region run again from the start at each back-off is far too slow)
+    if(sc.authors_loop && !m_s.global_region)
+    {
+      // the scripts' back-off: each run from the same start, ξ − 0.1 down
+      // to 0.2, then α, β halved and ξ back; the run with the fewest
+      // inverted elements is kept
+      ls.authors_loop = true;
+      ls.slide_cut = sc.authors_slide_cut;
+      ls.authors_energy = sc.authors_energy;
+      ls.allow_big_step = m_s.allow_big_step;
+      ls.max_rounds = (std::min)(ls.max_rounds, sc.paper_msj_stage_rounds);
+      const std::vector<Vec3> start = mesh.points;
+      std::vector<Vec3> best;
+      for(;;)
+      {
+        const Local_optimizer_report run = opt.run(mesh.points, ls);
+        if(best.empty() || run.inverted_after < r.inverted_after)
+        {
+          r = run;
+          best = mesh.points;
+        }
+        if(run.inverted_after == 0 || !m_s.relax_surface || stopped()) break;
+        ls.xi_start -= 0.1;
+        if(ls.xi_start < 0.2 - 1e-9)
+        {
+          ls.alpha *= 0.5; ls.beta *= 0.5;
+          ls.xi_start = m_s.xi;
+        }
+        if(ls.alpha < 1.) break;
+        mesh.points = start;
+      }
+      mesh.points = best;
+    }
+    else
+      r = opt.run(mesh.points, ls);
     m_final_alpha = r.final_alpha;
     sr.rounds = r.rounds;
     std::ostringstream d;

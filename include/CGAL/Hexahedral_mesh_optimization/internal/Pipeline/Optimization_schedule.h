@@ -192,6 +192,18 @@ struct Optimization_schedule
   bool msj_stage_keep_best = false;
   /// the rounds of the paper's schedule: the outer iterations of its scripts
   static constexpr int paper_msj_stage_rounds = 20;
+  /// the edge-angle optimiser's boundary weights: 0, α and β as they are;
+  /// ℓ > 0, (α ℓ)² and (β ℓ)² as in the authors' code (Local_optimizer.h)
+  double authors_weight_edge = 0.;
+  /// the edge-angle optimiser runs the authors' loop (`Local_optimizer_settings::
+  /// authors_loop`), and its callers back off between runs from the same
+  /// start as the authors' scripts do (ξ − 0.1 down to 0.2, then α, β halved
+  /// and ξ back to its start), the MSJ stages while α ≥ their α floor
+  bool authors_loop = false;
+  /// with it, the regions' cut vertices slide on the cut surface (`Local_optimizer_settings::slide_cut`)
+  bool authors_slide_cut = false;
+  /// with it, the authors' linearisation of the energy (`Local_optimizer_settings::authors_energy`)
+  bool authors_energy = false;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
   /// while a run ends above the tolerance, at most `msj_guard_retries` runs
   /// again, each with the bound times `msj_guard_retry_factor` (0.9, 0.75,
@@ -325,6 +337,10 @@ struct Optimization_schedule
     s.msj_stage_rounds = paper_msj_stage_rounds;
     s.msj_stage_projection_at_target = true;
     s.msj_stage_keep_best = true;
+    s.authors_weight_edge = 0.025; // the authors' weighting, at the normalised mean edge 0.025
+    s.authors_loop = true;         // the authors' region loop and their scripts' back-off
+    s.authors_slide_cut = true;    // their local mesh's boundary: the cut slides too
+    // (authors_energy: off, the tripod fit is kept)
     return s;
   }
 };

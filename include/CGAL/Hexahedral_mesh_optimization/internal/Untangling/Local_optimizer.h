@@ -45,11 +45,13 @@
 // the start of each region solve (NOTES reading 3).
 
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Edge_angle_energy.h>
+#include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Authors_edge_angle_energy.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Untangling/Target_edge_lengths.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Pipeline/Time_limit.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Quality/scaled_jacobian.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -86,6 +88,32 @@ struct Local_optimizer_settings
   /// the run ends after this many consecutive rounds that remove no bad
   /// element (a later stage takes over)
   int max_stalled_rounds = std::numeric_limits<int>::max();
+  /// 0: α and β weigh the boundary rows as they are; ℓ > 0: as the authors'
+  /// code weighs them, (α ℓ)² and (β ℓ)², ℓ the mean edge (their rows of
+  /// Eq. 6 carry α, β unsquared beside angle rows of edge vectors divided by
+  /// their length, i.e. 1/ℓ² times the length-unit rows here)
+  double authors_weight_edge = 0.;
+  /// the authors' loop (their `LocalMeshOpt`, read for `Method::paper`):
+  /// α, β, ξ stay as given over the rounds (their scripts back off between
+  /// runs), no ring growth; in a region the step τ falls by 10 % at every
+  /// iteration, a step is rolled back only if the bad count rises, the
+  /// target lengths after the first iteration are the current ones clamped
+  /// at ξ·ē, the iterations go on past the last bad element while the
+  /// region's minimum rises and end in the state before the first that does
+  /// not raise it once above the target; and a vertex whose solution is more
+  /// than 2ē away on an axis stays put unless `allow_big_step`
+  bool authors_loop = false;
+  bool allow_big_step = false;
+  /// with `authors_loop`: the region's cut vertices (on hexes outside it too)
+  /// slide in the tangent plane of the region's cut surface, as the boundary
+  /// of the authors' local mesh does, where that surface has no crease of
+  /// more than `cut_crease_degrees` (their local feature threshold); the
+  /// hexes outside that share them count in the rollback
+  bool slide_cut = false;
+  double cut_crease_degrees = 10.;
+  /// with `authors_loop`: the authors' own linearisation of the energy
+  /// (Authors_edge_angle_energy.h) instead of the tripod fit, α and β unsquared
+  bool authors_energy = false;
 };
 
 struct Local_optimizer_report
@@ -128,6 +156,7 @@ public:
     int stalled_rounds = 0;
     std::vector<double> length(m_topo.number_of_edges(), 0.);
     std::vector<Boundary_constraint> bc;
+    std::vector<char> in_region(s.authors_loop ? nh : 0, 0);
     std::size_t bad = rep.bad_before;
     for(int round = 0; round < s.max_rounds && bad > 0; ++round)
     {
@@ -137,18 +166,33 @@ public:
       for(std::size_t h = 0; h < nh; ++h) if(is_bad(sj[h], s.target_sj)) seeds.push_back(h);
       m_constraints(points, bc);
       const std::vector<Local_region> regions = extract_local_regions(m_topo, seeds, rings);
+      const std::size_t accepted_before = rep.accepted_steps;
       Energy_weights w;
       w.alpha = alpha; w.beta = beta;
+      if(s.authors_weight_edge > 0.)
+      {
+        w.alpha = (alpha * s.authors_weight_edge) * (alpha * s.authors_weight_edge);
+        w.beta = (beta * s.authors_weight_edge) * (beta * s.authors_weight_edge);
+      }
       std::size_t optimized = 0;
       for(const Local_region& region : regions)
         if(region.hexes.size() <= s.max_region_hexes && !time_limit_reached(s.time_limit))
         {
-          optimize_region(region, points, sj, bc, w, xi, s, rep);
+          if(s.authors_loop) authors_region(region, points, sj, bc, w, alpha, beta, xi, s, rep, in_region);
+          else optimize_region(region, points, sj, bc, w, xi, s, rep);
           ++optimized;
         }
       if(optimized == 0) break;
       const std::size_t new_bad = count_bad(sj, s.target_sj);
       if(on_round) on_round(round, new_bad);
+      if(s.authors_loop)
+      {
+        // (a round that moved nothing would be repeated as it was)
+        const bool moved = rep.accepted_steps != accepted_before;
+        bad = new_bad;
+        if(!moved) break;
+        continue;
+      }
       const bool stalled = new_bad >= bad;
       stalled_rounds = stalled ? stalled_rounds + 1 : 0;
       if(stalled) rings = (std::min)(rings + 1, s.max_rings);
@@ -240,6 +284,220 @@ private:
       bad = nbad; inv = ninv; minsj = nmin;
     }
     for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
+  }
+
+  /// the region's iterations of `authors_loop`; `cur` holds the SJ of the
+  /// region's hexes at the start and is left with those at the end
+  /// one solve of the authors' loop: (points, iteration, bad count now) ->
+  /// the free vertices' least-squares positions (empty: failed)
+  typedef std::function<std::vector<Vec3>(const std::vector<Vec3>&, int, std::size_t)> Region_solve;
+
+  /// `authors_region_loop` with the tripod energy: the target lengths after
+  /// the first iteration are the current ones clamped at ξ·ē
+  void authors_region_loop(const Local_region& region, std::vector<Vec3>& points, Edge_angle_energy& energy,
+                           std::vector<double>& length, double xi, const Local_optimizer_settings& s,
+                           std::vector<double>& cur, std::vector<double>& trial, std::size_t bad, double minsj,
+                           Local_optimizer_report& rep, const std::vector<std::size_t>& watch = {}) const
+  {
+    std::vector<std::size_t> edges; // the region's edges, each once
+    {
+      std::unordered_map<std::size_t, char> seen;
+      for(std::size_t h : region.hexes)
+        for(int k = 0; k < 12; ++k)
+          if(seen.emplace(m_topo.hex_edge(h, k), 1).second) edges.push_back(m_topo.hex_edge(h, k));
+    }
+    const Region_solve solve = [&](const std::vector<Vec3>& p, int it, std::size_t) {
+      if(it > 0)
+        for(std::size_t e : edges)
+        {
+          const auto& ed = m_topo.edge(e);
+          length[e] = (std::max)(norm(p[ed[0]] - p[ed[1]]), xi * m_mean_boundary_edge);
+        }
+      return energy.solve(p, length);
+    };
+    authors_iterations(region, points, solve, s, cur, trial, bad, minsj, rep, watch);
+  }
+
+  /// the region's iterations of `authors_loop`; `cur` holds the SJ of the
+  /// region's hexes at the start and is left with those at the end
+  void authors_iterations(const Local_region& region, std::vector<Vec3>& points, const Region_solve& solve,
+                          const Local_optimizer_settings& s, std::vector<double>& cur, std::vector<double>& trial,
+                          std::size_t bad, double minsj, Local_optimizer_report& rep,
+                          const std::vector<std::size_t>& watch) const
+  {
+    // `watch`: hexes outside the region that share moved vertices: their bad
+    // count joins the region's in the rollback
+    std::vector<double> watch_sj(watch.size());
+    std::size_t watch_bad = 0;
+    for(std::size_t i = 0; i < watch.size(); ++i)
+    {
+      watch_sj[i] = hex_sj(points, watch[i]);
+      if(is_bad(watch_sj[i], s.target_sj)) ++watch_bad;
+    }
+    bad += watch_bad;
+    const std::size_t nf = region.free_vertices.size();
+    std::vector<Vec3> saved(nf), best(nf);
+    for(std::size_t i = 0; i < nf; ++i) best[i] = points[region.free_vertices[i]];
+    std::vector<double> best_sj = cur;
+    const double far = 2. * m_mean_boundary_edge;
+    double tau = 0.9, previous_min = -1.;
+    for(int it = 0; it < s.local_iterations; ++it)
+    {
+      const std::vector<Vec3> sol = solve(points, it, bad);
+      if(sol.size() != nf) break;
+      for(std::size_t i = 0; i < nf; ++i)
+      {
+        const std::size_t v = region.free_vertices[i];
+        saved[i] = points[v];
+        const Vec3 d = sol[i] - points[v];
+        if(!s.allow_big_step && (std::abs(d[0]) > far || std::abs(d[1]) > far || std::abs(d[2]) > far)) continue;
+        points[v] = (1. - tau) * points[v] + tau * sol[i];
+      }
+      tau *= 0.9;
+      std::size_t nbad = 0;
+      double nmin = 2.;
+      for(std::size_t i = 0; i < region.hexes.size(); ++i)
+      {
+        trial[i] = hex_sj(points, region.hexes[i]);
+        if(is_bad(trial[i], s.target_sj)) ++nbad;
+        nmin = (std::min)(nmin, trial[i]);
+      }
+      for(std::size_t h : watch) if(is_bad(hex_sj(points, h), s.target_sj)) ++nbad;
+      if(nbad > bad || (accept_step && !accept_step(region, saved, points)))
+      {
+        for(std::size_t i = 0; i < nf; ++i) points[region.free_vertices[i]] = saved[i];
+        ++rep.rolled_back_steps;
+      }
+      else
+      {
+        ++rep.accepted_steps;
+        cur.swap(trial);
+        bad = nbad; minsj = nmin;
+      }
+      if(previous_min > s.target_sj && !(minsj > previous_min)) break;
+      previous_min = minsj;
+      for(std::size_t i = 0; i < nf; ++i) best[i] = points[region.free_vertices[i]];
+      best_sj = cur;
+    }
+    for(std::size_t i = 0; i < nf; ++i) points[region.free_vertices[i]] = best[i];
+    cur = best_sj;
+  }
+
+  /// `slide_cut`: the region with its cut vertices that may slide, each held
+  /// to the tangent plane of the cut surface at its position (β), the
+  /// hexes outside that share them watched, then the authors' loop
+  void authors_region(const Local_region& region, std::vector<Vec3>& points, std::vector<double>& sj,
+                      std::vector<Boundary_constraint>& bc, const Energy_weights& w, double alpha, double beta,
+                      double xi, const Local_optimizer_settings& s, Local_optimizer_report& rep,
+                      std::vector<char>& in_region) const
+  {
+    const auto& hexes = m_topo.hexes();
+    for(std::size_t h : region.hexes) in_region[h] = 1;
+    const double crease_cos = std::cos(s.cut_crease_degrees * 3.14159265358979323846 / 180.);
+    std::vector<std::size_t> cut, watch;
+    {
+      std::vector<std::size_t> candidates;
+      for(std::size_t h : region.hexes) candidates.insert(candidates.end(), hexes[h].begin(), hexes[h].end());
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      std::vector<std::size_t> outside;
+      for(std::size_t v : candidates)
+      {
+        if(!s.slide_cut) break;
+        if(std::binary_search(region.free_vertices.begin(), region.free_vertices.end(), v)) continue;
+        if(m_topo.is_constrained(v) || m_topo.is_boundary_vertex(v) || bc[v].type != Vertex_class::interior) continue;
+        // the region's faces at v that hexes outside it share: the cut surface
+        std::vector<std::pair<std::array<std::size_t, 4>, Vec3> > faces; // sorted key, outward normal
+        std::vector<std::array<std::size_t, 4> > outside_faces;
+        for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+          for(int f = 0; f < 6; ++f)
+          {
+            const auto& hx = hexes[c->hex];
+            std::array<std::size_t, 4> key = {hx[hex_faces[f][0]], hx[hex_faces[f][1]], hx[hex_faces[f][2]],
+                                              hx[hex_faces[f][3]]};
+            if(std::find(key.begin(), key.end(), v) == key.end()) continue;
+            if(!in_region[c->hex])
+            {
+              std::sort(key.begin(), key.end());
+              outside_faces.push_back(key);
+              continue;
+            }
+            const Vec3 p0 = points[key[0]], p1 = points[key[1]], p2 = points[key[2]], p3 = points[key[3]];
+            Vec3 n = cross(p2 - p0, p3 - p1);
+            Vec3 hc = {0., 0., 0.};
+            for(std::size_t x : hx) hc = hc + 0.125 * points[x];
+            if(dot(n, 0.25 * (p0 + p1 + p2 + p3) - hc) < 0.) n = -1. * n;
+            std::sort(key.begin(), key.end());
+            faces.push_back({key, normalized(n)});
+          }
+        std::vector<Vec3> normals;
+        for(const auto& f : faces)
+          if(std::find(outside_faces.begin(), outside_faces.end(), f.first) != outside_faces.end())
+            normals.push_back(f.second);
+        if(normals.empty()) continue;
+        bool flat = true;
+        Vec3 sum = {0., 0., 0.};
+        for(std::size_t i = 0; i < normals.size() && flat; ++i)
+        {
+          sum = sum + normals[i];
+          for(std::size_t j = i + 1; j < normals.size() && flat; ++j) flat = dot(normals[i], normals[j]) >= crease_cos;
+        }
+        if(!flat || squared_norm(sum) == 0.) continue;
+        cut.push_back(v);
+        Boundary_constraint& b = bc[v];
+        b.type = Vertex_class::regular;
+        b.anchor = points[v];
+        b.direction = normalized(sum);
+        for(auto c = m_topo.vertex_corners_begin(v); c != m_topo.vertex_corners_end(v); ++c)
+          if(!in_region[c->hex]) outside.push_back(c->hex);
+      }
+      std::sort(outside.begin(), outside.end());
+      outside.erase(std::unique(outside.begin(), outside.end()), outside.end());
+      watch.swap(outside);
+    }
+    for(std::size_t h : region.hexes) in_region[h] = 0;
+    Local_region grown = region;
+    grown.free_vertices.insert(grown.free_vertices.end(), cut.begin(), cut.end());
+    std::sort(grown.free_vertices.begin(), grown.free_vertices.end());
+    std::vector<double> cur(region.hexes.size()), trial(region.hexes.size());
+    std::size_t bad = 0;
+    double minsj = 2.;
+    for(std::size_t i = 0; i < region.hexes.size(); ++i)
+    {
+      cur[i] = sj[region.hexes[i]];
+      if(is_bad(cur[i], s.target_sj)) ++bad;
+      minsj = (std::min)(minsj, cur[i]);
+    }
+    if(s.authors_energy)
+    {
+      const Authors_edge_angle_energy energy(m_topo, grown);
+      const double mean = energy.mean_surface_edge(points);
+      const Region_solve solve = [&](const std::vector<Vec3>& p, int it, std::size_t bad_now) {
+        std::vector<Vec3> out;
+        // (the irregular-edge rows: weight 2 once the step is below 1/2, 10 once nothing is bad)
+        const double singular = bad_now == 0 ? 10. : (std::pow(0.9, it + 1) < 0.5 ? 2. : 1.);
+        if(!energy.solve(p, bc, alpha, beta, it == 0 ? energy.first_lengths(p, mean) : std::vector<double>(),
+                         xi * mean, singular, mean, out))
+          out.clear();
+        return out;
+      };
+      authors_iterations(grown, points, solve, s, cur, trial, bad, minsj, rep, watch);
+      for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
+      for(std::size_t h : watch) sj[h] = hex_sj(points, h);
+    }
+    else
+    {
+      Edge_angle_energy energy(m_topo, m_ideal, grown);
+      if(energy.factorize(bc, w))
+      {
+        std::vector<double> length(m_topo.number_of_edges(), 0.);
+        compute_target_edge_lengths(m_topo, m_ideal, grown, energy, points, xi * m_mean_boundary_edge, length);
+        authors_region_loop(grown, points, energy, length, xi, s, cur, trial, bad, minsj, rep, watch);
+        for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
+        for(std::size_t h : watch) sj[h] = hex_sj(points, h);
+      }
+    }
+    for(std::size_t v : cut) bc[v] = Boundary_constraint();
   }
 
   const Hex_mesh_topology& m_topo;
