@@ -260,7 +260,8 @@ public:
     const auto start = Clock::now();
     Optimization_result res;
     const std::vector<Vec3> input_points = mesh.points; // the hexes never change
-    const Quality_statistics q0 = quality_statistics(mesh);
+    m_input_sj = scaled_jacobians(mesh); // the box ideals' and the give-back's view of the input
+    const Quality_statistics q0 = quality_statistics(m_input_sj, mesh.points.size());
     res.inverted_before = q0.inverted; res.msj_before = q0.msj; res.asj_before = q0.asj;
 
     const Hex_mesh_topology topo(mesh);
@@ -375,11 +376,13 @@ private:
     gs.boundary_allowed = [&ts](std::size_t, const Vec3& now, const Vec3& in) {
       return closer_to_reference(ts, in, now);
     };
-    const std::vector<double> sj = scaled_jacobians(Hex_mesh_arrays{input, mesh.hexes});
-    gs.eligible.assign(input.size(), 1);
-    for(std::size_t h = 0; h < sj.size(); ++h)
-      if(sj[h] < m_s.schedule.barrier_input_shape_sj)
-        for(std::size_t v : mesh.hexes[h]) gs.eligible[v] = 0;
+    if(mesh.points != input) // (nothing to give back otherwise)
+    {
+      gs.eligible.assign(input.size(), 1);
+      for(std::size_t h = 0; h < m_input_sj.size(); ++h)
+        if(m_input_sj[h] < m_s.schedule.barrier_input_shape_sj)
+          for(std::size_t v : mesh.hexes[h]) gs.eligible[v] = 0;
+    }
     const Give_back_report r = give_back_to_input(topo, input, mesh.points, gs);
     std::ostringstream d;
     d << r.given_back << " of " << r.moved_before << " moved vertices back at their input position in " << r.sweeps
@@ -543,7 +546,7 @@ private:
     const double shape_sj = m_s.schedule.barrier_input_shape_sj;
     const std::vector<Vec3> reference = mesh.points;
     const std::vector<unsigned char> use_reference =
-      shape_sj <= 1. ? box_ideals(topo, mesh) : std::vector<unsigned char>(mesh.hexes.size(), 0);
+      shape_sj <= 1. ? box_ideals(topo, mesh, m_input_sj) : std::vector<unsigned char>(mesh.hexes.size(), 0);
     for_each_region(regions, [&](const Local_region& region) {
       if(region.free_vertices.empty() || stopped()) return;
       Barrier_untangler b(topo, region, no_constraints, 0.);
@@ -567,11 +570,12 @@ private:
   /// hexes sharing a vertex with it are elongated and well made (SJ at least
   /// `barrier_input_shape_sj`). Scattered inverted or elongated hexes, as a
   /// perturbation leaves them, aim at a cube.
-  std::vector<unsigned char> box_ideals(const Hex_mesh_topology& topo, const Hex_mesh_arrays& mesh) const
+  /// (`sj`: the scaled Jacobians of `mesh`'s hexes)
+  std::vector<unsigned char> box_ideals(const Hex_mesh_topology& topo, const Hex_mesh_arrays& mesh,
+                                        const std::vector<double>& sj) const
   {
     const Optimization_schedule& sc = m_s.schedule;
     const std::size_t nh = mesh.hexes.size();
-    const std::vector<double> sj = scaled_jacobians(mesh);
     std::vector<unsigned char> elongated(nh, 0), well_made_box(nh, 0), use(nh, 0);
     for(std::size_t h = 0; h < nh; ++h)
     {
@@ -649,6 +653,8 @@ private:
   /// the inverted count of the current state, from the last count or stage report
   std::size_t m_inverted = 0;
   double m_final_alpha = m_s.alpha;
+  /// the scaled Jacobians of the input's hexes, computed once per run
+  std::vector<double> m_input_sj;
 };
 
 } // namespace internal
