@@ -340,6 +340,7 @@ struct Options
   int local_iterations, number_of_iterations;
   bool barrier_fallback;
   double target_msj, surface_tolerance, crease_seed_angle, turn_focus_band;
+  double local_surface_tolerance = -1.; // none
   bool pull_back, asj_smoothing, edge_angle_stages, coarse_level_start;
   HMO::Method method = HMO::Method::package;
   double time_limit = std::numeric_limits<double>::infinity();
@@ -386,7 +387,8 @@ const std::set<std::string>& accepted_options(Function f)
 {
   static const std::set<std::string> untangle{"sharp_angle", "reference_feature_angle", "alpha", "beta", "xi", "relax_surface",
                                               "local_iterations", "number_of_iterations", "barrier_fallback",
-                                              "surface_tolerance", "method", "time_limit", "threads"};
+                                              "surface_tolerance", "local_surface_tolerance", "method", "time_limit",
+                                              "threads"};
   static const std::set<std::string> quality = [] {
     std::set<std::string> s = untangle;
     s.insert({"target_msj", "pull_back", "asj_smoothing", "edge_angle_stages", "coarse_level_start", "crease_seed_angle", "turn_focus_band"});
@@ -451,6 +453,10 @@ Options read_options(Function f, const py::kwargs& kwargs)
     else if(name == "barrier_fallback") o.barrier_fallback = boolean(name, v);
     else if(name == "target_msj") o.target_msj = finite_number(name, v, -1., 1.);
     else if(name == "surface_tolerance") o.surface_tolerance = finite_number(name, v, 0., 1.);
+    else if(name == "local_surface_tolerance")
+    {
+      if(!v.is_none()) o.local_surface_tolerance = finite_number(name, v, 0., 1e6);
+    }
     else if(name == "pull_back") o.pull_back = boolean(name, v);
     else if(name == "asj_smoothing") o.asj_smoothing = boolean(name, v);
     else if(name == "edge_angle_stages") { o.edge_angle_stages = boolean(name, v); edge_angle_given = true; }
@@ -537,6 +543,17 @@ py::dict result_dict(const HMO::Optimization_result& r)
     unresolved.append(e);
   }
   d["unresolved"] = unresolved;
+  py::list off_surface;
+  for(const HMO::Off_surface_vertex& o : r.off_surface)
+  {
+    py::dict e;
+    e["vertex"] = o.vertex;
+    e["distance"] = o.distance;
+    e["allowed"] = o.allowed;
+    e["local_length"] = o.local_length;
+    off_surface.append(e);
+  }
+  d["off_surface"] = off_surface;
   py::dict certificate;
   certificate["hexes"] = r.certificate.hexes;
   certificate["certified_valid"] = r.certificate.certified_valid();
@@ -629,6 +646,7 @@ py::tuple run(Function f, const py::array& points, const py::array& hexes, const
                            .reference_feature_angle(o.reference_feature_angle)
                            .target_msj(o.target_msj)
                            .surface_tolerance(o.surface_tolerance)
+                           .local_surface_tolerance(o.local_surface_tolerance)
                            .method(o.method)
                            .stop_flag(&stop)
                            .maximum_running_time(o.time_limit) // CGAL's, after the package's (parameters.h)
@@ -709,7 +727,8 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "Keyword options (the named parameters of the C++ functions, same names and defaults): sharp_angle,\n"
     "reference_feature_angle, alpha, beta, xi, relax_surface, local_iterations, number_of_iterations,\n"
     "barrier_fallback, "
-    "surface_tolerance, method ('package' or 'paper'), time_limit (seconds, a hard stop, CGAL's\n"
+    "surface_tolerance, local_surface_tolerance (a fraction of the shortest edge at each boundary vertex;\n"
+    "None: none), method ('package' or 'paper'), time_limit (seconds, a hard stop, CGAL's\n"
     "maximum_running_time in C++; None: none),\n"
     "threads (0: every core; the result does not depend on it)";
   const std::string quality_options = std::string(options_doc) +
@@ -722,7 +741,8 @@ PYBIND11_MODULE(_hexmesh_optimization, m)
     "Ctrl-C, or an exception raised by progress, stops the stages at their next safe point and is raised.\n"
     "Returns (new_points, report): report is a dict of everything Optimization_result holds (success,\n"
     "inverted/msj/asj before and after, surface_error, seconds, time_limit_reached, interrupted,\n"
-    "warnings, unresolved, certificate, stages). The GIL is released while optimising.\n";
+    "warnings, unresolved, off_surface (boundary vertices beyond the tolerances: vertex, distance, allowed,\n"
+    "local_length), certificate, stages). The GIL is released while optimising.\n";
   m.def("untangle",
         [](const py::array& p, const py::array& h, const py::object& ref, const py::object& progress,
            const py::kwargs& kw) { return run(Function::untangle, p, h, ref, progress, kw); },

@@ -194,6 +194,7 @@ run_stages(Mesh& mesh, const hexmesh_optimize::Hexmesh_optimize_options& options
                            .stop_flag(&stop_requested)
                            .target_msj(options.target_msj)
                            .surface_tolerance(options.surface_tolerance)
+                           .local_surface_tolerance(options.local_surface_tolerance)
                            .method(options.paper_method ? CGAL::Hexahedral_mesh_optimization::Method::paper
                                                         : CGAL::Hexahedral_mesh_optimization::Method::package)
                            .paper_recipe(options.paper_recipe)
@@ -252,6 +253,13 @@ void print_run_warnings(const CGAL::Hexahedral_mesh_optimization::Optimization_r
               << " more hexahedra still inverted (all are in the --report JSON)\n";
   for(const std::string& w : r.warnings)
     if(w != already_printed) std::cerr << "warning: " << w << "\n";
+  for(std::size_t i = 0; i < r.off_surface.size() && i < shown; ++i)
+    std::cerr << "warning: boundary vertex " << r.off_surface[i].vertex << " at " << r.off_surface[i].distance
+              << " from the reference surface (" << r.off_surface[i].allowed << " allowed, shortest edge at it "
+              << r.off_surface[i].local_length << ")\n";
+  if(r.off_surface.size() > shown)
+    std::cerr << "warning: " << r.off_surface.size() - shown
+              << " more boundary vertices off the reference surface (all are in the --report JSON)\n";
 }
 
 } // namespace
@@ -387,6 +395,7 @@ int main(int argc, char** argv)
       after.interrupted = r.interrupted || stop_requested.load();
       after.warnings = r.warnings;
       after.unresolved = r.unresolved;
+      after.off_surface = r.off_surface;
       if(options.worst > 0)
         after.worst = worst_elements(mesh, sj, options.worst);
       print_run_warnings(r, reference_warning);

@@ -45,6 +45,7 @@ struct Hexmesh_optimize_options
   double reference_feature_angle = 150.; ///< --reference-feature-angle DEG
   double target_msj = 1.;         ///< --target-msj X (1: as high as it gets)
   double surface_tolerance = 0.005; ///< --surface-tolerance X (relative to the bbox diagonal)
+  double local_surface_tolerance = -1.; ///< --local-surface-tolerance X (of the shortest edge at a vertex; < 0: none)
   double time_limit = 0.;         ///< --time-limit S: hard stop of the whole run; 0: none
   int threads = 0;                ///< --threads N; 0: every core
   bool asj_smoothing = true;      ///< --no-asj
@@ -253,6 +254,12 @@ inline const std::vector<Option_spec>& option_table()
      "largest surface error the quality stages may cause, relative to the bounding-box diagonal (default 0.005)",
      [](O& o, const std::string& v, std::string& e) {
        return parse_number("--surface-tolerance", v, 0., 1., o.surface_tolerance, e);
+     }},
+    {"--local-surface-tolerance", "X",
+     "also keep the boundary around each boundary vertex within X times the shortest edge at it in the input (thin "
+     "boundary layers; default: none); the vertices left farther than the tolerances allow are listed",
+     [](O& o, const std::string& v, std::string& e) {
+       return parse_number("--local-surface-tolerance", v, 0., 1e6, o.local_surface_tolerance, e);
      }},
     {"--time-limit", "SECONDS",
      "hard stop: after SECONDS of wall time from the start (reading included) the optimisation stops at its next "

@@ -82,6 +82,8 @@ struct Mesh_report
   std::vector<std::string> warnings;
   /// output: the elements still inverted, and why (`Optimization_result::unresolved`)
   std::vector<CGAL::Hexahedral_mesh_optimization::Unresolved_element> unresolved;
+  /// output: the boundary vertices off the reference surface (`Optimization_result::off_surface`)
+  std::vector<CGAL::Hexahedral_mesh_optimization::Off_surface_vertex> off_surface;
   /// the exact validity certificate (`CGAL::hex_mesh_validity_certificate()`)
   CGAL::Hexahedral_mesh_optimization::Validity_certificate certificate;
   /// --worst N: its N worst elements, worst first (empty: not asked for)
@@ -289,6 +291,14 @@ inline std::string json_mesh_report(const Mesh_report& r, bool with_output_field
       static const char* reasons[] = {"locked", "region_exhausted", "time_limit", "constrained"};
       s << (i ? ", " : "") << "{\"hex\": " << e.hex << ", \"scaled_jacobian\": " << json_number(e.scaled_jacobian)
         << ", \"reason\": \"" << reasons[int(e.reason)] << "\", \"details\": " << json_string(e.details) << "}";
+    }
+    s << "]";
+    s << ",\n" << in << "\"off_surface\": [";
+    for(std::size_t i = 0; i < r.off_surface.size(); ++i)
+    {
+      const auto& o = r.off_surface[i];
+      s << (i ? ", " : "") << "{\"vertex\": " << o.vertex << ", \"distance\": " << json_number(o.distance)
+        << ", \"allowed\": " << json_number(o.allowed) << ", \"local_length\": " << json_number(o.local_length) << "}";
     }
     s << "]";
   }

@@ -32,6 +32,7 @@ void read_quality_parameters(const NamedParameters& np, const Untangle_settings&
   s.target_msj = checked_parameter("target_msj", choose_parameter(get_parameter(np, hex_mesh_internal_np::target_msj), 1.),
                                    -1., 1.);
   s.surface_tolerance = surface_tolerance_parameter(np);
+  s.local_surface_tolerance = local_surface_tolerance_parameter(np);
   s.pull_back = choose_parameter(get_parameter(np, hex_mesh_internal_np::pull_back), true);
   s.asj_smoothing = choose_parameter(get_parameter(np, hex_mesh_internal_np::asj_smoothing), true);
   s.schedule = u.schedule; // the method's schedule (`read_untangle_parameters()`)
@@ -200,6 +201,9 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   if(already_at_target(q_input, s, warning))
   {
     Optimization_result result = nothing_to_do(arrays, q_input, s, visitor);
+    if(s.reference_points) // (the input's own boundary is its reference otherwise)
+      report_off_surface_vertices(arrays, original, s.reference_points, s.reference_triangles, s.surface_tolerance,
+                                  s.local_surface_tolerance, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
@@ -231,6 +235,8 @@ Optimization_result run_quality_pipeline(HexMesh& mesh, const NamedParameters& n
   if(untangle) append_run(result, q);
   else result = q;
   if(!warning.empty()) result.warnings.insert(result.warnings.begin(), warning);
+  report_off_surface_vertices(arrays, original, s.reference_points, s.reference_triangles, s.surface_tolerance,
+                              s.local_surface_tolerance, result);
   if(result.inverted_after > 0) result.unresolved = unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Mesh_parameters::write_back(arrays, read, mesh, np);
   return result;
@@ -282,6 +288,11 @@ input: when nothing better is found the input is returned as it was.
     \cgalParamDescription{largest surface error, relative to the reference's bounding-box diagonal, that the boundary moves of the quality stages may cause; in [0, 1] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
     \cgalParamDefault{0.005}
+  \cgalParamNEnd
+  \cgalParamNBegin{local_surface_tolerance}
+    \cgalParamDescription{a fraction of the local edge length: the boundary moves of the quality stages also keep the boundary around each vertex within this fraction of the shortest edge at the vertex in the input, so that the tolerance means something for a boundary layer's thin first cells; the boundary vertices left farther from the reference than the tolerances allow are listed in `Optimization_result::off_surface`, with a warning; a negative value: none; NaN throws `std::invalid_argument`}
+    \cgalParamType{`double`}
+    \cgalParamDefault{none (`surface_tolerance` alone)}
   \cgalParamNEnd
   \cgalParamNBegin{reference_surface}
     \cgalParamDescription{a triangle (or polygon) mesh the boundary must stay on. It is checked against the mesh boundary before anything moves (`hex_mesh_reference_fit()`): one in another coordinate frame or of another object throws `Hexahedral_mesh_optimization::Reference_mismatch`, the mesh untouched; one the boundary starts farther from than `surface_tolerance` adds a warning to the result}

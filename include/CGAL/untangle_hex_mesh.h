@@ -200,6 +200,11 @@ same output on any machine, under any load and with any number of threads.
     \cgalParamType{`double`}
     \cgalParamDefault{0.005}
   \cgalParamNEnd
+  \cgalParamNBegin{local_surface_tolerance}
+    \cgalParamDescription{a fraction of the local edge length: the boundary vertices left farther from the reference than `surface_tolerance` or this fraction of the shortest edge at the vertex in the input are listed in `Optimization_result::off_surface`, with a warning; a negative value: none; NaN throws `std::invalid_argument`}
+    \cgalParamType{`double`}
+    \cgalParamDefault{none (`surface_tolerance` alone)}
+  \cgalParamNEnd
   \cgalParamNBegin{sharp_angle}
     \cgalParamDescription{θ in degrees: boundary edges whose dihedral angle is below it are features; in [0, 180] (`std::invalid_argument` otherwise)}
     \cgalParamType{`double`}
@@ -293,8 +298,12 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
     arrays, s.reference_points, s.reference_triangles,
     HMO::internal::surface_tolerance_parameter(np));
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
+  const HMO::internal::Hex_mesh_arrays input = arrays;
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);
+  HMO::internal::report_off_surface_vertices(arrays, input, s.reference_points, s.reference_triangles,
+                                             HMO::internal::surface_tolerance_parameter(np),
+                                             HMO::internal::local_surface_tolerance_parameter(np), result);
   if(result.inverted_after > 0)
     result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Mesh_parameters::write_back(arrays, read, mesh, np);

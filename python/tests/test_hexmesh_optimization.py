@@ -263,6 +263,32 @@ def test_options_are_checked():
         hmo.optimize(points, hexes, progress=3)
 
 
+def test_local_surface_tolerance_and_the_off_surface_report():
+    # a graded wall grid (first layer 1e-3, growth 1.3), one vertex pushed below the first layer
+    n, layers = 6, 5
+    z = [0.0]
+    for k in range(layers):
+        z.append(z[-1] + 1e-3 * 1.3 ** k)
+    points, hexes = unit_cube_grid(n)
+    idx = lambda i, j, k: i + (n + 1) * (j + (n + 1) * k)
+    points = np.array([[i / n, j / n, z[k]] for k in range(layers + 1) for j in range(n + 1) for i in range(n + 1)])
+    hexes = hexes[: n * n * layers]
+    points[idx(3, 3, 2), 2] = 0.5 * z[1]
+    assert hmo.quality(points, hexes)["inverted"] > 0
+    new_points, report = hmo.optimize(points, hexes, local_surface_tolerance=0.01)
+    assert report["inverted_after"] == 0
+    assert report["off_surface"] == []
+    assert np.abs(new_points[: (n + 1) ** 2, 2]).max() <= 0.01 * z[1]
+    # with none, a tangled mesh that must move its boundary reports the vertices left off, farthest first
+    _, report = hmo.untangle(*hmo.read(BUNNY), local_surface_tolerance=0.0)
+    off = report["off_surface"]
+    assert off and set(off[0]) == {"vertex", "distance", "allowed", "local_length"}
+    assert all(o["distance"] > o["allowed"] for o in off)
+    assert any("farther from the reference surface" in w for w in report["warnings"])
+    with pytest.raises(ValueError, match="local_surface_tolerance"):
+        hmo.optimize(points, hexes, local_surface_tolerance=float("nan"))
+
+
 def test_a_valid_mesh_is_never_made_worse():
     points, hexes = unit_cube_grid(3)
     new_points, report = hmo.improve_quality(points, hexes, target_msj=0.9, method="paper")

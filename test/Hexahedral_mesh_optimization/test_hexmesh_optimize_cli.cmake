@@ -143,6 +143,26 @@ check("a turn focus band of 0 exits 2 (got ${badband_rc})" badband_rc EQUAL 2)
 check("and names the option: ${badband_err}" badband_err MATCHES "--turn-focus-band: 0 is outside \\(0, 1\\]")
 check("nothing written" NOT EXISTS ${WORK}/band.mesh)
 
+run(badlocal ${bunny} ${WORK}/local.mesh --local-surface-tolerance -1)
+check("a negative local surface tolerance exits 2 (got ${badlocal_rc})" badlocal_rc EQUAL 2)
+check("and names the option: ${badlocal_err}" badlocal_err MATCHES "--local-surface-tolerance")
+check("nothing written" NOT EXISTS ${WORK}/local.mesh)
+
+# a local surface tolerance of 0: every boundary vertex the untangling left
+# off the input's boundary is listed, in the JSON and on standard error
+run(local ${mesh} ${WORK}/local.mesh --untangle --local-surface-tolerance 0 --report ${WORK}/local.json --quiet)
+check("--local-surface-tolerance 0 runs (rc ${local_rc}: ${local_err})" local_rc EQUAL 0)
+if(EXISTS ${WORK}/local.json)
+  file(READ ${WORK}/local.json local_json)
+  string(JSON off ERROR_VARIABLE e LENGTH "${local_json}" output off_surface)
+  check("the JSON has the off-surface list (${off} ${e})" e STREQUAL "NOTFOUND")
+  if(off GREATER 0)
+    string(JSON distance ERROR_VARIABLE e GET "${local_json}" output off_surface 0 distance)
+    check("each with its distance (${distance} ${e})" distance GREATER 0)
+    check("and standard error names them: ${local_err}" local_err MATCHES "warning: boundary vertex [0-9]+ at ")
+  endif()
+endif()
+
 run(three a.mesh b.mesh c.mesh)
 check("three files exit 2 (got ${three_rc})" three_rc EQUAL 2)
 

@@ -481,8 +481,11 @@ static void test_reference_fit()
   Mesh moved = before; // (m stays as it is: `boundary_of` reads it)
   const HMO::Optimization_result r =
     CGAL::improve_hex_mesh_quality(moved, CGAL::parameters::reference_surface(grown));
-  HMO_CHECK(r.warnings.size() == 1);
   HMO_CHECK(!r.warnings.empty() && r.warnings[0].find("starts off the reference") != std::string::npos);
+  // the quality stages keep the surface error where it was: the vertices
+  // still beyond the tolerance are listed, with a second warning
+  HMO_CHECK(!r.off_surface.empty());
+  HMO_CHECK(r.warnings.size() == 2 && r.warnings[1].find("farther from the reference surface") != std::string::npos);
   Mesh again = before;
   const HMO::Optimization_result r_own =
     CGAL::improve_hex_mesh_quality(again, CGAL::parameters::reference_surface(boundary_of(1., 0.)));
@@ -835,16 +838,25 @@ static void test_constrained_quality_stages()
 /// first: the repair stays where it was broken (issue 49). Only the pushed
 /// vertex and vertices of its one-ring (26 in a grid) move; the wall stays
 /// exactly flat, and the first-layer heights keep within 10 % of the input's.
-static void test_boundary_layer_kept()
+/// the unit square's n x n grid over a wall at z = 0, graded in z: first
+/// layer 1e-3, growth 1.3, `layers` layers (their heights in `z`)
+static Mesh graded_wall_grid(int n, int layers, std::vector<double>& z)
 {
-  const int n = 10, layers = 8;
   Mesh m;
-  std::vector<double> z(1, 0.);
+  z.assign(1, 0.);
   for(int k = 0; k < layers; ++k) z.push_back(z.back() + 1e-3 * std::pow(1.3, k));
   for(int k = 0; k <= layers; ++k)
     for(int j = 0; j <= n; ++j)
       for(int i = 0; i <= n; ++i) m.points.emplace_back(double(i) / n, double(j) / n, z[std::size_t(k)]);
   m.hexahedra = hmo_test::structured_hexes(n, n, layers);
+  return m;
+}
+
+static void test_boundary_layer_kept()
+{
+  const int n = 10, layers = 8;
+  std::vector<double> z;
+  Mesh m = graded_wall_grid(n, layers, z);
   auto id = [&](int i, int j, int k) { return std::size_t(i + (n + 1) * (j + (n + 1) * k)); };
   const Mesh input = m;
   const std::size_t pushed = id(n / 2, n / 2, 2);
@@ -869,6 +881,79 @@ static void test_boundary_layer_kept()
             << ", " << moved << " vertices moved\n";
 }
 
+/// `vertex_is_constrained_map` of an Indexed_hex_mesh: vertex v is constrained when (*mask)[v]
+struct Constrained_vertices
+{
+  typedef std::size_t key_type;
+  typedef bool value_type;
+  typedef bool reference;
+  typedef boost::readable_property_map_tag category;
+  const std::vector<bool>* mask;
+  friend bool get(const Constrained_vertices& m, std::size_t v) { return (*m.mask)[v]; }
+};
+
+/// `local_surface_tolerance`: with it, the boundary of a repaired boundary
+/// layer stays within that fraction of each wall vertex's first-cell
+/// height, and the report is empty; a boundary vertex that cannot go back
+/// (constrained, off its reference) is reported with its distance and what
+/// it was allowed, with a warning; NaN is refused
+static void test_local_surface_tolerance()
+{
+  const int n = 8, layers = 6;
+  std::vector<double> z;
+  Mesh m = graded_wall_grid(n, layers, z);
+  auto id = [&](int i, int j, int k) { return std::size_t(i + (n + 1) * (j + (n + 1) * k)); };
+  const std::size_t pushed = id(n / 2, n / 2, 2);
+  m.points[pushed] = Point(m.points[pushed].x(), m.points[pushed].y(), 0.5 * z[1]);
+  HMO_CHECK(CGAL::hex_mesh_quality(m).inverted > 0);
+  const double local = 0.01;
+  const HMO::Optimization_result r = CGAL::optimize_hex_mesh(m, CGAL::parameters::local_surface_tolerance(local));
+  HMO_CHECK(r.inverted_after == 0);
+  HMO_CHECK(r.off_surface.empty());
+  double worst_wall = 0.;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i) worst_wall = (std::max)(worst_wall, std::abs(m.points[id(i, j, 0)].z()));
+  HMO_CHECK(worst_wall <= local * z[1]);
+
+  // a constrained wall vertex lifted off the reference (the flat box) stays there: reported
+  typedef CGAL::Surface_mesh<Point> Surface;
+  std::vector<double> z2;
+  Mesh lifted = graded_wall_grid(n, layers, z2);
+  Surface box;
+  {
+    using namespace HMO::internal;
+    const Hex_mesh_arrays a = make_hex_mesh_arrays(lifted, K());
+    std::vector<Vec3> pts;
+    std::vector<Tri> tris;
+    triangulate_boundary(extract_boundary(a), a.points, Quad_split::diagonal_02, pts, tris);
+    for(const Vec3& p : pts) box.add_vertex(Point(p[0], p[1], p[2]));
+    for(const Tri& t : tris) box.add_face(Surface::Vertex_index(t[0]), Surface::Vertex_index(t[1]), Surface::Vertex_index(t[2]));
+  }
+  const std::size_t held = id(3, 5, 0);
+  lifted.points[held] = Point(lifted.points[held].x(), lifted.points[held].y(), 2e-4);
+  std::vector<bool> constrained(lifted.points.size(), false);
+  constrained[held] = true;
+  const Constrained_vertices is_constrained{&constrained};
+  const HMO::Optimization_result q = CGAL::improve_hex_mesh_quality(
+    lifted, CGAL::parameters::reference_surface(box).local_surface_tolerance(local).vertex_is_constrained_map(is_constrained));
+  HMO_CHECK(q.off_surface.size() == 1);
+  if(!q.off_surface.empty())
+  {
+    HMO_CHECK(q.off_surface[0].vertex == held);
+    HMO_CHECK(std::abs(q.off_surface[0].distance - 2e-4) <= 1e-12);
+    HMO_CHECK(std::abs(q.off_surface[0].local_length - (z2[1] - 2e-4)) <= 1e-12); // its first cell, as given
+    HMO_CHECK(q.off_surface[0].allowed <= local * q.off_surface[0].local_length + 1e-15);
+  }
+  HMO_CHECK(!q.warnings.empty());
+
+  bool refused = false;
+  try { CGAL::optimize_hex_mesh(m, CGAL::parameters::local_surface_tolerance(std::nan(""))); }
+  catch(const std::invalid_argument&) { refused = true; }
+  HMO_CHECK(refused);
+  std::cout << "local surface tolerance: wall within " << worst_wall << " (first layer " << z[1] << "), "
+            << q.off_surface.size() << " vertex reported\n";
+}
+
 HMO_TEST_MAIN(test_improve_quality)
 {
   HMO_CASE(test_properties());
@@ -886,6 +971,7 @@ HMO_TEST_MAIN(test_improve_quality)
   HMO_CASE(test_constrained_untangling_stages());
   HMO_CASE(test_constrained_quality_stages());
   HMO_CASE(test_boundary_layer_kept());
+  HMO_CASE(test_local_surface_tolerance());
   return hmo_test::report(argv[0]);
 }
 

@@ -64,6 +64,23 @@ struct Unresolved_element
 
 /*!
 \ingroup PkgHexahedralMeshOptimizationRef
+A boundary vertex the optimisation left farther from the reference surface
+than the tolerances allow: `surface_tolerance` times the reference's
+bounding-box diagonal, and, when given, `local_surface_tolerance` times the
+vertex's local edge length (the shortest edge at it in the input). A
+vertex ends there when putting it back on the surface would invert an
+element or lower the MSJ reached, or when the input already had it there.
+*/
+struct Off_surface_vertex
+{
+  std::size_t vertex = 0;     ///< its index in the mesh's vertices
+  double distance = 0.;       ///< its distance to the reference surface, in model units
+  double allowed = 0.;        ///< the distance the tolerances allow it, in model units
+  double local_length = 0.;   ///< the shortest edge at it in the input, in model units
+};
+
+/*!
+\ingroup PkgHexahedralMeshOptimizationRef
 The exact validity certificate of a hexahedral mesh
 (`hex_mesh_validity_certificate()`): a hexahedron is certified valid when
 the Jacobian determinant is positive, decided exactly on its coordinates,
@@ -127,6 +144,10 @@ struct Optimization_result
   /// the elements still inverted at the end (empty when `inverted_after` is
   /// 0), in index order, each with the reason it was not freed
   std::vector<Unresolved_element> unresolved;
+  /// the boundary vertices farther from the reference than the tolerances
+  /// allow (`Off_surface_vertex`), farthest first relative to what they are
+  /// allowed; empty when every boundary vertex is within them
+  std::vector<Off_surface_vertex> off_surface;
   /// the exact validity certificate of the mesh returned; the rule "never
   /// worse than the input" also compares the numbers of hexahedra not
   /// certified valid (a result with more is replaced by the input)

@@ -118,6 +118,7 @@ CGAL_HMO_PUBLIC_PARAMETER(reference_feature_angle)
 CGAL_HMO_PUBLIC_PARAMETER(stop_flag)
 CGAL_HMO_PUBLIC_PARAMETER(target_msj)
 CGAL_HMO_PUBLIC_PARAMETER(surface_tolerance)
+CGAL_HMO_PUBLIC_PARAMETER(local_surface_tolerance)
 CGAL_HMO_PUBLIC_PARAMETER(method)
 CGAL_HMO_PUBLIC_PARAMETER(paper_recipe)
 CGAL_HMO_PUBLIC_PARAMETER(volume_tolerance)
@@ -183,7 +184,7 @@ namespace internal {
 
 #define CGAL_HMO_PARAMETER_LIST(X) \
   X(reference_surface) X(reference_vertex_point_map) X(sharp_angle) X(reference_feature_angle) X(stop_flag) \
-  X(target_msj) X(surface_tolerance) X(method) X(paper_recipe) X(volume_tolerance) X(outside_tolerance)
+  X(target_msj) X(surface_tolerance) X(local_surface_tolerance) X(method) X(paper_recipe) X(volume_tolerance) X(outside_tolerance)
 
 /// What the package's free functions of `CGAL::parameters` return: CGAL's
 /// named parameters (every function that takes them takes these), with the

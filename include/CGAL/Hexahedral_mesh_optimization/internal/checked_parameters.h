@@ -68,6 +68,16 @@ double surface_tolerance_parameter(const NamedParameters& np)
     parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::surface_tolerance), 0.005), 0., 1.);
 }
 
+/// the `local_surface_tolerance` named parameter, at least 0; negative
+/// (the default) when not given or given negative (none)
+template <class NamedParameters>
+double local_surface_tolerance_parameter(const NamedParameters& np)
+{
+  const double t =
+    parameters::choose_parameter(parameters::get_parameter(np, hex_mesh_internal_np::local_surface_tolerance), -1.);
+  return t < 0. ? -1. : checked_parameter("local_surface_tolerance", t, 0., std::numeric_limits<double>::infinity());
+}
+
 /// CGAL's named parameters of a model of `HexMesh`: `vertex_point_map`
 /// (default: the mesh's own points), `geom_traits` (default: the kernel of
 /// the map's point type) and `vertex_is_constrained_map` (default: none)

@@ -113,6 +113,10 @@ struct Quality_settings
   /// largest surface error allowed to the boundary moves of the quality
   /// stages, relative to the reference's bounding-box diagonal
   double surface_tolerance = 0.005;
+  /// with a value ≥ 0, the boundary moves of the quality stages also keep
+  /// the quads around a boundary vertex within this fraction of the
+  /// shortest edge at it in `original` (thin layers); negative: none
+  double local_surface_tolerance = -1.;
   /// the run's hard stop (null: none); it is not the schedule's business
   const Time_limit* time_limit = nullptr;
   /// work caps and convergence thresholds of every stage
@@ -314,6 +318,13 @@ private:
     // boundary as it is now
     const std::vector<Vec3> guard_start = user_reference() ? st.mesh.points : st.home;
     st.guard.reset(new Surface_guard(st.ts->boundary(), m_guard_points, m_guard_tris, guard_start));
+    if(m_s.local_surface_tolerance >= 0.)
+    {
+      const bool same = original.points.size() == st.mesh.points.size(); // (not on a coarse level)
+      std::vector<double> tolerance = shortest_edge_at_vertices(same ? original : st.mesh);
+      for(double& t : tolerance) t *= m_s.local_surface_tolerance * (same ? st.nz.scale : 1.);
+      st.guard->set_vertex_tolerances(std::move(tolerance));
+    }
   }
 
   /// measures the surface error of the current state

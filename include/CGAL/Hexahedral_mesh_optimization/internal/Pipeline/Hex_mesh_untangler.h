@@ -242,6 +242,34 @@ inline double relative_surface_error_to(const Hex_mesh_arrays& mesh, const Hex_m
   return relative_surface_error(mesh, input);
 }
 
+/// `off_surface_vertices` of `mesh` against the reference soup when there
+/// is one, the boundary of `input` otherwise, with `tolerance` relative to
+/// that reference's diagonal and `local` relative to the shortest edge at
+/// each vertex in `input` (negative: none); adds a warning to `res` when
+/// there are any
+inline void report_off_surface_vertices(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
+                                        const std::vector<Vec3>* ref_points, const std::vector<Tri>* ref_tris,
+                                        double tolerance, double local, Optimization_result& res)
+{
+  Triangle_surface ref;
+  if(ref_points && ref_tris)
+  {
+    std::vector<Triangle_surface::Vertex_index> vi;
+    for(const Vec3& p : *ref_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+    for(const Tri& t : *ref_tris) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+  }
+  else
+    boundary_surface(input, ref);
+  res.off_surface = off_surface_vertices(mesh, input, ref, tolerance * diagonal(bbox_of(ref)), local);
+  if(res.off_surface.empty()) return;
+  const Off_surface_vertex& w = res.off_surface.front();
+  std::ostringstream m;
+  m << res.off_surface.size() << " boundary vertices are farther from the reference surface than the tolerance"
+    << (local >= 0. ? "s allow" : " allows") << "; the farthest, vertex " << w.vertex << ", at " << w.distance << " ("
+    << w.distance / w.local_length << " of its shortest edge, " << w.allowed << " allowed)";
+  res.warnings.push_back(m.str());
+}
+
 template <class Visitor>
 class Hex_mesh_untangler
 {

@@ -121,6 +121,10 @@ public:
   /// `local_deviations`); infinity (the default) turns this off.
   void set_dense_sampling_above(double distance) { m_dense_above2 = distance * distance; }
 
+  /// From now on, the tolerance `bound_at` applies around vertex v is at
+  /// most `tolerance[v]` (the `local_surface_tolerance` of thin layers)
+  void set_vertex_tolerances(std::vector<double> tolerance) { m_vertex_tolerance = std::move(tolerance); }
+
   Surface_guard(const Surface_guard&) = delete;
   Surface_guard& operator=(const Surface_guard&) = delete;
 
@@ -142,9 +146,11 @@ public:
 
   /// `local_deviations(points, v, x).bound(tolerance)`, the same value: a
   /// direction known to be within `tolerance` is not measured exactly
+  /// (with per-vertex tolerances, `tolerance` is capped by v's)
   Surface_deviation bound_at(const std::vector<Vec3>& points, std::size_t v, const Vec3& x, double tolerance) const
   {
     ++m_queries;
+    if(!m_vertex_tolerance.empty()) tolerance = (std::min)(tolerance, m_vertex_tolerance[v]);
     Surface_deviation d;
     measure(points, v, x, Surface_deviation{tolerance, tolerance}, nullptr, d);
     return d;
@@ -437,6 +443,7 @@ private:
   /// a tie is then refused all the same
   double m_rounding = 0.;
   double m_dense_above2 = std::numeric_limits<double>::infinity();
+  std::vector<double> m_vertex_tolerance; ///< per vertex, normalised units (empty: none)
   mutable std::atomic<std::size_t> m_queries{0};
   std::vector<K::Triangle_3> m_triangles;
   Tree m_tree;

@@ -37,6 +37,7 @@
 //   (about 7 % larger for a box of equal sides).
 
 #include <CGAL/Hexahedral_mesh_optimization/Hex_mesh_surface_distance.h>
+#include <CGAL/Hexahedral_mesh_optimization/Optimization_result.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_arrays.h>
 #include <CGAL/Hexahedral_mesh_optimization/internal/Mesh/Hex_mesh_boundary.h>
 
@@ -756,6 +757,58 @@ inline double relative_surface_error(const Hex_mesh_arrays& mesh, const Triangle
 inline double relative_surface_error(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& reference)
 {
   return surface_distance(mesh, reference).relative();
+}
+
+/// the shortest edge at each vertex of `mesh` (0 at a vertex no hex uses):
+/// the length scale of a boundary layer's first cell at its wall vertices
+inline std::vector<double> shortest_edge_at_vertices(const Hex_mesh_arrays& mesh)
+{
+  std::vector<double> shortest(mesh.points.size(), std::numeric_limits<double>::infinity());
+  for(const auto& h : mesh.hexes)
+    for(const auto& e : hex_edges)
+    {
+      const std::size_t a = h[e[0]], b = h[e[1]];
+      const double l = norm(mesh.points[a] - mesh.points[b]);
+      shortest[a] = (std::min)(shortest[a], l);
+      shortest[b] = (std::min)(shortest[b], l);
+    }
+  for(double& l : shortest) if(l == std::numeric_limits<double>::infinity()) l = 0.;
+  return shortest;
+}
+
+/// The boundary vertices of `mesh` farther from `reference` than they are
+/// allowed: `tolerance` (model units), and with `local` ≥ 0 also `local`
+/// times the shortest edge at the vertex in `input` (same vertices as
+/// `mesh`); the farthest first relative to what they are allowed, then by
+/// index. Plain closest-point queries: a vertex is on the reference when its
+/// distance is within rounding of 0.
+inline std::vector<Off_surface_vertex> off_surface_vertices(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
+                                                            const Triangle_surface& reference, double tolerance,
+                                                            double local)
+{
+  namespace sd = surface_distance_detail;
+  std::vector<Off_surface_vertex> off;
+  const std::vector<sd::Soup_triangle> triangles = sd::triangles_of(reference);
+  if(triangles.empty()) return off;
+  sd::Soup_tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  const std::vector<double> h = shortest_edge_at_vertices(input);
+  const Hex_mesh_boundary b = extract_boundary(mesh);
+  for(std::size_t v : b.vertices)
+  {
+    const Vec3& p = mesh.points[v];
+    const double d = std::sqrt(tree.squared_distance(sd::Soup_point(p[0], p[1], p[2])));
+    const double allowed = local >= 0. ? (std::min)(tolerance, local * h[v]) : tolerance;
+    if(d > allowed) off.push_back(Off_surface_vertex{v, d, allowed, h[v]});
+  }
+  auto ratio = [](const Off_surface_vertex& x) {
+    return x.allowed > 0. ? x.distance / x.allowed : std::numeric_limits<double>::infinity();
+  };
+  std::sort(off.begin(), off.end(), [&](const Off_surface_vertex& x, const Off_surface_vertex& y) {
+    if(ratio(x) != ratio(y)) return ratio(x) > ratio(y);
+    return x.distance != y.distance ? x.distance > y.distance : x.vertex < y.vertex;
+  });
+  return off;
 }
 
 } // namespace internal
