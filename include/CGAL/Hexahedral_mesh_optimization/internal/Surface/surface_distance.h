@@ -779,9 +779,8 @@ inline std::vector<double> shortest_edge_at_vertices(const Hex_mesh_arrays& mesh
 /// The boundary vertices of `mesh` farther from `reference` than they are
 /// allowed: `tolerance` (model units), and with `local` ≥ 0 also `local`
 /// times the shortest edge at the vertex in `input` (same vertices as
-/// `mesh`); the farthest first relative to what they are allowed, then by
-/// index. Plain closest-point queries: a vertex is on the reference when its
-/// distance is within rounding of 0.
+/// `mesh`), never less than 1e-12 of the reference's diagonal (rounding);
+/// the farthest first relative to what they are allowed, then by index.
 inline std::vector<Off_surface_vertex> off_surface_vertices(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
                                                             const Triangle_surface& reference, double tolerance,
                                                             double local)
@@ -793,12 +792,13 @@ inline std::vector<Off_surface_vertex> off_surface_vertices(const Hex_mesh_array
   sd::Soup_tree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
   const std::vector<double> h = shortest_edge_at_vertices(input);
+  const double rounding = 1e-12 * diagonal(bbox_of(reference)); // "on the reference" to rounding
   const Hex_mesh_boundary b = extract_boundary(mesh);
   for(std::size_t v : b.vertices)
   {
     const Vec3& p = mesh.points[v];
     const double d = std::sqrt(tree.squared_distance(sd::Soup_point(p[0], p[1], p[2])));
-    const double allowed = local >= 0. ? (std::min)(tolerance, local * h[v]) : tolerance;
+    const double allowed = (std::max)(local >= 0. ? (std::min)(tolerance, local * h[v]) : tolerance, rounding);
     if(d > allowed) off.push_back(Off_surface_vertex{v, d, allowed, h[v]});
   }
   auto ratio = [](const Off_surface_vertex& x) {
