@@ -317,7 +317,8 @@ struct Optimization_schedule
   /// The method of Xu & Chen (2018) alone: edge-angle untangling with
   /// relaxation (Algorithm 1, no hand-over to the barrier), the SLIM
   /// pull-back, MSJ stages by the edge-angle optimiser with the boundary
-  /// projected back, and the final ASJ smoothing; none of the package's
+  /// projected back, the final ASJ smoothing and the projection of the
+  /// boundary that keeps the MSJ (their scripts end so); none of the package's
   /// additions (barrier stages, restoration, max-min smoothing, turns, the
   /// L-BFGS start of the ASJ smoothing).
   static Optimization_schedule paper()
@@ -328,7 +329,7 @@ struct Optimization_schedule
     s.restoration = false;
     s.surface_fitting = false;
     s.msj_stage_max_min = false;
-    s.final_projection = false;
+    s.final_projection = true; // the scripts' last SmoothMap: the boundary onto the surface, quality kept
     s.repair_region = false;
     s.barrier_input_shape_sj = 2.;
     s.give_back = false;
