@@ -1017,7 +1017,8 @@ private:
     // the first run that leaves nothing below t ends it
     ls.authors_loop = true;
     ls.slide_cut = m_s.schedule.authors_slide_cut;
-    ls.authors_energy = m_s.schedule.authors_energy;
+    ls.authors_energy = m_s.schedule.authors_energy || m_s.schedule.msj_authors_energy;
+    ls.anchor_at_current = m_s.schedule.msj_anchor_at_current;
     ls.min_sj_floor = -std::numeric_limits<double>::infinity();
     const std::vector<Vec3> start = st.mesh.points;
     Local_optimizer_report r;

@@ -204,6 +204,12 @@ struct Optimization_schedule
   bool authors_slide_cut = false;
   /// with it, the authors' linearisation of the energy (`Local_optimizer_settings::authors_energy`)
   bool authors_energy = false;
+  /// in the MSJ stages, with `authors_loop`: the authors' linearisation of
+  /// the energy (whatever `authors_energy` says for the untangling), and
+  /// the boundary rows through the vertices' current positions
+  /// (`Local_optimizer_settings::anchor_at_current`)
+  bool msj_authors_energy = false;
+  bool msj_anchor_at_current = false;
   /// the surface guard's bound in the MSJ stages, relative to the tolerance;
   /// while a run ends above the tolerance, at most `msj_guard_retries` runs
   /// again, each with the bound times `msj_guard_retry_factor` (0.9, 0.75,
@@ -311,7 +317,8 @@ struct Optimization_schedule
   /// The method of Xu & Chen (2018) alone: edge-angle untangling with
   /// relaxation (Algorithm 1, no hand-over to the barrier), the SLIM
   /// pull-back, MSJ stages by the edge-angle optimiser with the boundary
-  /// projected back, and the final ASJ smoothing; none of the package's
+  /// projected back, the final ASJ smoothing and the projection of the
+  /// boundary that keeps the MSJ (their scripts end so); none of the package's
   /// additions (barrier stages, restoration, max-min smoothing, turns, the
   /// L-BFGS start of the ASJ smoothing).
   static Optimization_schedule paper()
@@ -322,7 +329,7 @@ struct Optimization_schedule
     s.restoration = false;
     s.surface_fitting = false;
     s.msj_stage_max_min = false;
-    s.final_projection = false;
+    s.final_projection = true; // the scripts' last SmoothMap: the boundary onto the surface, quality kept
     s.repair_region = false;
     s.barrier_input_shape_sj = 2.;
     s.give_back = false;
@@ -340,7 +347,9 @@ struct Optimization_schedule
     s.authors_weight_edge = 0.025; // the authors' weighting, at the normalised mean edge 0.025
     s.authors_loop = true;         // the authors' region loop and their scripts' back-off
     s.authors_slide_cut = true;    // their local mesh's boundary: the cut slides too
-    // (authors_energy: off, the tripod fit is kept)
+    // (authors_energy: off, the tripod fit is kept while untangling)
+    s.msj_authors_energy = true;    // their energy raises a boundary element the tripod fit lowers
+    s.msj_anchor_at_current = true; // their rows do not pull the boundary back onto the surface
     return s;
   }
 };

@@ -114,6 +114,12 @@ struct Local_optimizer_settings
   /// with `authors_loop`: the authors' own linearisation of the energy
   /// (Authors_edge_angle_energy.h) instead of the tripod fit, α and β unsquared
   bool authors_energy = false;
+  /// with `authors_loop`: Eq. 6's v̄ is each boundary vertex's position at
+  /// the iteration, as in the authors' rows (β n·x = β n·v, α x = α v), not
+  /// its closest point on the target surface: the rows damp a step across
+  /// the surface without pulling the vertex back onto it (the caller
+  /// projects the boundary afterwards)
+  bool anchor_at_current = false;
 };
 
 struct Local_optimizer_report
@@ -297,7 +303,8 @@ private:
   void authors_region_loop(const Local_region& region, std::vector<Vec3>& points, Edge_angle_energy& energy,
                            std::vector<double>& length, double xi, const Local_optimizer_settings& s,
                            std::vector<double>& cur, std::vector<double>& trial, std::size_t bad, double minsj,
-                           Local_optimizer_report& rep, const std::vector<std::size_t>& watch = {}) const
+                           Local_optimizer_report& rep, const std::vector<std::size_t>& watch = {},
+                           std::vector<Boundary_constraint>* current_anchors = nullptr) const
   {
     std::vector<std::size_t> edges; // the region's edges, each once
     {
@@ -307,6 +314,7 @@ private:
           if(seen.emplace(m_topo.hex_edge(h, k), 1).second) edges.push_back(m_topo.hex_edge(h, k));
     }
     const Region_solve solve = [&](const std::vector<Vec3>& p, int it, std::size_t) {
+      if(current_anchors) anchor_at(region, p, *current_anchors);
       if(it > 0)
         for(std::size_t e : edges)
         {
@@ -316,6 +324,14 @@ private:
       return energy.solve(p, length);
     };
     authors_iterations(region, points, solve, s, cur, trial, bad, minsj, rep, watch);
+  }
+
+  /// `anchor_at_current`: the boundary rows of the region's free vertices
+  /// pass through their positions `p`
+  static void anchor_at(const Local_region& region, const std::vector<Vec3>& p, std::vector<Boundary_constraint>& bc)
+  {
+    for(std::size_t v : region.free_vertices)
+      if(bc[v].type != Vertex_class::interior) bc[v].anchor = p[v];
   }
 
   /// the region's iterations of `authors_loop`; `cur` holds the SJ of the
@@ -474,6 +490,7 @@ private:
       const double mean = energy.mean_surface_edge(points);
       const Region_solve solve = [&](const std::vector<Vec3>& p, int it, std::size_t bad_now) {
         std::vector<Vec3> out;
+        if(s.anchor_at_current) anchor_at(grown, p, bc);
         // (the irregular-edge rows: weight 2 once the step is below 1/2, 10 once nothing is bad)
         const double singular = bad_now == 0 ? 10. : (std::pow(0.9, it + 1) < 0.5 ? 2. : 1.);
         if(!energy.solve(p, bc, alpha, beta, it == 0 ? energy.first_lengths(p, mean) : std::vector<double>(),
@@ -492,7 +509,8 @@ private:
       {
         std::vector<double> length(m_topo.number_of_edges(), 0.);
         compute_target_edge_lengths(m_topo, m_ideal, grown, energy, points, xi * m_mean_boundary_edge, length);
-        authors_region_loop(grown, points, energy, length, xi, s, cur, trial, bad, minsj, rep, watch);
+        authors_region_loop(grown, points, energy, length, xi, s, cur, trial, bad, minsj, rep, watch,
+                            s.anchor_at_current ? &bc : nullptr);
         for(std::size_t i = 0; i < region.hexes.size(); ++i) sj[region.hexes[i]] = cur[i];
         for(std::size_t h : watch) sj[h] = hex_sj(points, h);
       }
