@@ -1034,13 +1034,7 @@ private:
         r.bad_after = run.bad_after;
       }
       if(run.bad_after == 0 || stopped()) break;
-      ls.xi_start -= 0.1;
-      if(ls.xi_start < 0.2 - 1e-9)
-      {
-        ls.alpha *= 0.5; ls.beta *= 0.5;
-        ls.xi_start = m_s.xi;
-      }
-      if(ls.alpha < m_s.min_alpha_beta || ls.beta < m_s.min_alpha_beta) break;
+      if(!back_off(ls, m_s.xi, m_s.min_alpha_beta)) break;
       st.mesh.points = start;
     }
     if(keep_best) st.mesh.points = best;

@@ -477,13 +477,7 @@ private:
           best = mesh.points;
         }
         if(run.inverted_after == 0 || !m_s.relax_surface || stopped()) break;
-        ls.xi_start -= 0.1;
-        if(ls.xi_start < 0.2 - 1e-9)
-        {
-          ls.alpha *= 0.5; ls.beta *= 0.5;
-          ls.xi_start = m_s.xi;
-        }
-        if(ls.alpha < 1.) break;
+        if(!back_off(ls, m_s.xi, sc.authors_untangle_alpha_floor)) break;
         mesh.points = start;
       }
       mesh.points = best;

@@ -200,6 +200,9 @@ struct Optimization_schedule
   /// start as the authors' scripts do (ξ − 0.1 down to 0.2, then α, β halved
   /// and ξ back to its start), the MSJ stages while α ≥ their α floor
   bool authors_loop = false;
+  /// with `authors_loop`, the untangler's back-off stops when α or β falls
+  /// below this (the scripts halve them while elements stay inverted)
+  double authors_untangle_alpha_floor = 1.;
   /// with it, the regions' cut vertices slide on the cut surface (`Local_optimizer_settings::slide_cut`)
   bool authors_slide_cut = false;
   /// with it, the authors' linearisation of the energy (`Local_optimizer_settings::authors_energy`)

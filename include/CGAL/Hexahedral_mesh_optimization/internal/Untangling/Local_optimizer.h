@@ -122,6 +122,22 @@ struct Local_optimizer_settings
   bool anchor_at_current = false;
 };
 
+/// The authors' scripts' back-off between two runs of their loop from the
+/// same start: ξ − 0.1 down to 0.2, then α and β halved and ξ back to
+/// `xi_start`. Returns false when α or β falls below `alpha_floor` (no run
+/// after this one).
+inline bool back_off(Local_optimizer_settings& ls, double xi_start, double alpha_floor)
+{
+  ls.xi_start -= 0.1;
+  if(ls.xi_start < 0.2 - 1e-9)
+  {
+    ls.alpha *= 0.5;
+    ls.beta *= 0.5;
+    ls.xi_start = xi_start;
+  }
+  return !(ls.alpha < alpha_floor || ls.beta < alpha_floor);
+}
+
 struct Local_optimizer_report
 {
   std::size_t bad_before = 0, bad_after = 0;
