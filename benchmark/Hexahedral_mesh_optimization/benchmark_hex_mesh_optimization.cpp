@@ -1105,6 +1105,8 @@ static std::vector<Ablation> ablations()
     {"no give-back", [](S& s, bool&) { s.give_back = false; }},
     {"no interior barrier", [](S& s, bool&) { s.interior_stage = false; }},
     {"no edge-angle untangling", [](S& s, bool&) { s.edge_angle_stage = false; }},
+    {"edge-angle untangling of 8 rounds", [](S& s, bool&) { s.edge_angle_rounds = 8; }},
+    {"edge-angle untangling of 4 rounds", [](S& s, bool&) { s.edge_angle_rounds = 4; }},
     {"no barrier untangling", [](S& s, bool&) { s.barrier_stage = false; }},
     {"no untangler surface pass", [](S& s, bool&) { s.surface_stage = false; }},
     {"no untangle-again rounds", [](S& s, bool&) { s.untangle_again_rounds = 0; }},

@@ -76,11 +76,13 @@ struct Optimization_schedule
   /// ... where at least this share of the hexes sharing a vertex with it are
   /// well-made elongated boxes (the mesher meant boxes there)
   double barrier_box_evidence = 0.5;
-  /// the edge-angle stage (Algorithm 1): at most this many rounds, ended
-  /// earlier by this many consecutive rounds that free nothing (the barrier
-  /// takes over), and regions above this many hexes are left to the barrier
-  /// (their sparse Cholesky factorisation grows much faster than their size)
-  int edge_angle_rounds = 60;
+  /// the edge-angle stage (Algorithm 1): at most this many rounds (its first
+  /// rounds relax the surface where the barrier alone would leave it locked;
+  /// the barrier frees the rest far faster), ended earlier by this many
+  /// consecutive rounds that free nothing, and regions above this many hexes
+  /// are left to the barrier (their sparse Cholesky factorisation grows much
+  /// faster than their size)
+  int edge_angle_rounds = 4;
   int edge_angle_stalled_rounds = 8;
   std::size_t edge_angle_max_region_hexes = 3000;
   /// the stage "barrier": one pass per weight, in units of w0 (moving a
