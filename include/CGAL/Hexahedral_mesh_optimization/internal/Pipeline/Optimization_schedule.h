@@ -338,6 +338,7 @@ struct Optimization_schedule
     s.repair_region = false;
     s.barrier_input_shape_sj = 2.;
     s.give_back = false;
+    s.edge_angle_rounds = 60;      // the paper's untangling to its end: no barrier takes over
     s.edge_angle_stalled_rounds = std::numeric_limits<int>::max();
     s.edge_angle_max_region_hexes = std::numeric_limits<std::size_t>::max();
     s.msj_stage_edge_angle_passes = paper_msj_stage_edge_angle_passes;
