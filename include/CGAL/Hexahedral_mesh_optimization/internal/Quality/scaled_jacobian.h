@@ -62,6 +62,9 @@ constexpr int hex_edges[12][2] = {
   {0, 4}, {1, 5}, {2, 6}, {3, 7}
 };
 
+/// The 3 groups of 4 parallel edges of a hexahedron (indices into `hex_edges`).
+constexpr int hex_parallel_edges[3][4] = {{0, 2, 4, 6}, {1, 3, 5, 7}, {8, 9, 10, 11}};
+
 /// The 6 faces, each oriented so that its normal (right-hand rule) points out
 /// of a positively oriented hexahedron.
 constexpr int hex_faces[6][4] = {

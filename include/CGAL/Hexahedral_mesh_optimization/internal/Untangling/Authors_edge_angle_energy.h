@@ -189,9 +189,8 @@ public:
         }
     }
     // parallel edges of each hex, for the target lengths
-    static const int parallel[3][4] = {{0, 2, 4, 6}, {1, 3, 5, 7}, {8, 9, 10, 11}};
     for(std::size_t h : region.hexes)
-      for(const auto& g : parallel)
+      for(const auto& g : hex_parallel_edges)
         for(int a = 0; a < 4; ++a)
           m_equal.push_back({edge_index(hexes[h][hex_edges[g[a]][0]], hexes[h][hex_edges[g[a]][1]]),
                              edge_index(hexes[h][hex_edges[g[(a + 1) % 4]][0]], hexes[h][hex_edges[g[(a + 1) % 4]][1]])});

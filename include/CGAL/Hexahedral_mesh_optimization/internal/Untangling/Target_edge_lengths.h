@@ -60,10 +60,8 @@ inline void compute_target_edge_lengths(const Hex_mesh_topology& topo, const Ide
     trip.emplace_back(i, i, 1.); trip.emplace_back(j, j, 1.);
     trip.emplace_back(i, j, -1.); trip.emplace_back(j, i, -1.);
   };
-  // the 3 groups of 4 parallel edges of a hex (indices into hex_edges)
-  static const int parallel[3][4] = {{0, 2, 4, 6}, {1, 3, 5, 7}, {8, 9, 10, 11}};
   for(std::size_t h : region.hexes)
-    for(const auto& g : parallel)
+    for(const auto& g : hex_parallel_edges)
       for(int a = 0; a < 4; ++a)
         add_difference(local[topo.hex_edge(h, g[a])], local[topo.hex_edge(h, g[(a + 1) % 4])]);
   for(std::size_t v : region.free_vertices)
