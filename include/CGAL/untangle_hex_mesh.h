@@ -292,18 +292,19 @@ untangle_hex_mesh(HexMesh& mesh, const CGAL_NP_CLASS& np = parameters::default_v
   std::vector<std::array<std::size_t, 2> > ref_creases;
   HMO::internal::read_untangle_parameters(np, s, ref_points, ref_tris, ref_creases);
 
+  const double tolerance = HMO::internal::surface_tolerance_parameter(np);
+  const double local_tolerance = HMO::internal::local_surface_tolerance_parameter(np);
+
   HMO::internal::Hex_mesh_arrays arrays = Mesh_parameters::extract(mesh, np);
   const std::vector<HMO::internal::Vec3> read = arrays.points;
-  const std::string warning = HMO::internal::require_reference_fit(
-    arrays, s.reference_points, s.reference_triangles,
-    HMO::internal::surface_tolerance_parameter(np));
+  const std::string warning =
+    HMO::internal::require_reference_fit(arrays, s.reference_points, s.reference_triangles, tolerance);
   HMO::internal::Hex_mesh_untangler<typename std::remove_reference<decltype(visitor)>::type> untangler(s, visitor);
   const HMO::internal::Hex_mesh_arrays input = arrays;
   HMO::Optimization_result result = untangler.run(arrays);
   if(!warning.empty()) result.warnings.push_back(warning);
-  HMO::internal::report_off_surface_vertices(arrays, input, s.reference_points, s.reference_triangles,
-                                             HMO::internal::surface_tolerance_parameter(np),
-                                             HMO::internal::local_surface_tolerance_parameter(np), result);
+  HMO::internal::report_off_surface_vertices(arrays, input, s.reference_points, s.reference_triangles, tolerance,
+                                             local_tolerance, result);
   if(result.inverted_after > 0)
     result.unresolved = HMO::internal::unresolved_elements(arrays, result.time_limit_reached || result.interrupted);
   Mesh_parameters::write_back(arrays, read, mesh, np);

@@ -226,40 +226,41 @@ inline double pull_back_to_surface(const Hex_mesh_topology& topo, const Target_s
   return worst;
 }
 
-/// the surface error of `mesh` (relative to the reference's diagonal): to
-/// the reference soup when there is one, to the boundary of `input` otherwise
+/// the surface the error is measured against: the reference soup when there
+/// is one, the boundary of `input` otherwise (quads cut along (0, 2))
+inline void reference_surface_of(const Hex_mesh_arrays& input, const std::vector<Vec3>* ref_points,
+                                 const std::vector<Tri>* ref_tris, Triangle_surface& ref)
+{
+  if(!(ref_points && ref_tris))
+  {
+    boundary_surface(input, ref);
+    return;
+  }
+  std::vector<Triangle_surface::Vertex_index> vi;
+  for(const Vec3& p : *ref_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
+  for(const Tri& t : *ref_tris) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+}
+
+/// the surface error of `mesh` (relative to the reference's diagonal)
+/// against `reference_surface_of(input, ref_points, ref_tris)`
 inline double relative_surface_error_to(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
                                         const std::vector<Vec3>* ref_points, const std::vector<Tri>* ref_tris)
 {
-  if(ref_points && ref_tris)
-  {
-    Triangle_surface ref;
-    std::vector<Triangle_surface::Vertex_index> vi;
-    for(const Vec3& p : *ref_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
-    for(const Tri& t : *ref_tris) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
-    return relative_surface_error(mesh, ref);
-  }
-  return relative_surface_error(mesh, input);
+  Triangle_surface ref;
+  reference_surface_of(input, ref_points, ref_tris, ref);
+  return relative_surface_error(mesh, ref);
 }
 
-/// `off_surface_vertices` of `mesh` against the reference soup when there
-/// is one, the boundary of `input` otherwise, with `tolerance` relative to
-/// that reference's diagonal and `local` relative to the shortest edge at
-/// each vertex in `input` (negative: none); adds a warning to `res` when
-/// there are any
+/// `off_surface_vertices` of `mesh` against `reference_surface_of(input,
+/// ref_points, ref_tris)`, with `tolerance` relative to that reference's
+/// diagonal and `local` relative to the shortest edge at each vertex in
+/// `input` (negative: none); adds a warning to `res` when there are any
 inline void report_off_surface_vertices(const Hex_mesh_arrays& mesh, const Hex_mesh_arrays& input,
                                         const std::vector<Vec3>* ref_points, const std::vector<Tri>* ref_tris,
                                         double tolerance, double local, Optimization_result& res)
 {
   Triangle_surface ref;
-  if(ref_points && ref_tris)
-  {
-    std::vector<Triangle_surface::Vertex_index> vi;
-    for(const Vec3& p : *ref_points) vi.push_back(ref.add_vertex(Triangle_surface::Point(p[0], p[1], p[2])));
-    for(const Tri& t : *ref_tris) ref.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
-  }
-  else
-    boundary_surface(input, ref);
+  reference_surface_of(input, ref_points, ref_tris, ref);
   res.off_surface = off_surface_vertices(mesh, input, ref, tolerance * diagonal(bbox_of(ref)), local);
   if(res.off_surface.empty()) return;
   const Off_surface_vertex& w = res.off_surface.front();
@@ -458,9 +459,8 @@ private:
     // region run again from the start at each back-off is far too slow)
     if(sc.authors_loop && !m_s.global_region)
     {
-      // the scripts' back-off: each run from the same start, ξ − 0.1 down
-      // to 0.2, then α, β halved and ξ back; the run with the fewest
-      // inverted elements is kept
+      // the scripts' back-off (`back_off`), each run from the same start;
+      // the run with the fewest inverted elements is kept
       ls.authors_loop = true;
       ls.slide_cut = sc.authors_slide_cut;
       ls.authors_energy = sc.authors_energy;
