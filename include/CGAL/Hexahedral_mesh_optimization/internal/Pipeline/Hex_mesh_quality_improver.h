@@ -1012,9 +1012,9 @@ private:
       if(keep_best) st.mesh.points = best;
       return r;
     }
-    // the scripts' back-off: each run from the same start (ξ − 0.1 down to
-    // 0.2, then α, β halved and ξ back) while α stays at or above its floor;
-    // the first run that leaves nothing below t ends it
+    // the scripts' back-off (`back_off`, α and β at or above their floor),
+    // each run from the same start; the first run that leaves nothing below
+    // t ends it
     ls.authors_loop = true;
     ls.slide_cut = m_s.schedule.authors_slide_cut;
     ls.authors_energy = m_s.schedule.authors_energy || m_s.schedule.msj_authors_energy;

@@ -359,14 +359,8 @@ private:
   {
     // `watch`: hexes outside the region that share moved vertices: their bad
     // count joins the region's in the rollback
-    std::vector<double> watch_sj(watch.size());
-    std::size_t watch_bad = 0;
-    for(std::size_t i = 0; i < watch.size(); ++i)
-    {
-      watch_sj[i] = hex_sj(points, watch[i]);
-      if(is_bad(watch_sj[i], s.target_sj)) ++watch_bad;
-    }
-    bad += watch_bad;
+    for(std::size_t h : watch)
+      if(is_bad(hex_sj(points, h), s.target_sj)) ++bad;
     const std::size_t nf = region.free_vertices.size();
     std::vector<Vec3> saved(nf), best(nf);
     for(std::size_t i = 0; i < nf; ++i) best[i] = points[region.free_vertices[i]];
